@@ -1,0 +1,239 @@
+"""Run a sweep on Dask: every (point, seed) a future, each record stored as it arrives.
+
+By default the runs execute on a ``distributed.LocalCluster`` started here (one process
+per core, one thread each, loopback only); with ``scheduler`` they go to an existing
+cluster. Records are written by this process (the client), so workers need no access to
+the output folder. Runs whose record exists are skipped (failed ones rerun only with
+``retry_failed``). On KeyboardInterrupt the pending futures are cancelled, the table is
+written from what finished and the cluster is closed; the outcome says so.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import logging
+import os
+import signal
+import threading
+import traceback
+from collections.abc import Iterator
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
+
+from distributed import Client, LocalCluster, as_completed
+from distributed.diagnostics.plugin import WorkerPlugin
+
+from etswarm.errors import EtswarmError
+from etswarm.experiments.progress import SweepProgress
+from etswarm.experiments.spec import Run, SweepSpec
+from etswarm.experiments.store import RunStore, atomic_write_bytes
+from etswarm.experiments.table import build_table, write_table
+from etswarm.experiments.task import error_record, execute_run, resolve_task
+
+
+@dataclass(frozen=True)
+class SweepOutcome:
+    """What a sweep session did.
+
+    ``total`` runs in the spec; ``skipped`` had a record already; ``ran`` finished in this
+    session, ``failed`` of them with an error; ``pending`` were not finished (interrupted);
+    ``kept`` runs of the spec have a record now; ``table`` is the Parquet file.
+    """
+
+    out_dir: Path
+    total: int
+    skipped: int
+    ran: int
+    failed: int
+    pending: int
+    kept: int
+    interrupted: bool
+    table: Path
+
+
+class _IgnoreSigint(WorkerPlugin):
+    """Make a local worker process ignore Ctrl-C: the client handles it and shuts it down.
+
+    A terminal sends SIGINT to every process of the foreground group, workers included;
+    without this they would die mid-task while the client is still collecting results.
+    Only applies in a worker's own process (main thread), never in the client.
+    """
+
+    def __init__(self) -> None:
+        self.client_pid = os.getpid()
+
+    def setup(self, worker: Any) -> None:
+        in_main_thread = threading.current_thread() is threading.main_thread()
+        if in_main_thread and os.getpid() != self.client_pid:
+            signal.signal(signal.SIGINT, signal.SIG_IGN)
+
+
+def plan_runs(spec: SweepSpec, store: RunStore, retry_failed: bool) -> tuple[list[Run], int]:
+    """The runs to execute now, and how many are skipped because their record exists."""
+    todo: list[Run] = []
+    skipped = 0
+    for run in spec.runs():
+        status = store.status(run.run_id)
+        if status == "ok" or (status == "error" and not retry_failed):
+            skipped += 1
+        else:
+            todo.append(run)
+    return todo, skipped
+
+
+def check_task(spec: SweepSpec) -> None:
+    """Fail early, on the client, when the task cannot be imported or rejects a parameter.
+
+    A task function may declare the parameter names it accepts in a ``parameters``
+    attribute (any collection of str); unknown names are then a spec error.
+    """
+    try:
+        func = resolve_task(spec.task, spec.path.parent)
+    except EtswarmError as err:
+        raise EtswarmError(f"{spec.path}: sweep.task: {err}") from err
+    accepted = getattr(func, "parameters", None)
+    if accepted is None:
+        return
+    for point in spec.points:
+        for name in point:
+            if name not in accepted:
+                known = ", ".join(sorted(accepted))
+                raise EtswarmError(
+                    f"{spec.path}: {name}: not a parameter of {spec.task} (known: {known})"
+                )
+
+
+@contextlib.contextmanager
+def dask_client(scheduler: str | None, workers: int | None) -> Iterator[Client]:
+    """A client on ``scheduler``, or on a new loopback LocalCluster of ``workers`` processes."""
+    if scheduler is not None:
+        try:
+            client = Client(scheduler, timeout="20s")
+        except (OSError, TimeoutError) as err:
+            raise EtswarmError(f"--scheduler {scheduler}: cannot connect ({err})") from err
+        try:
+            yield client
+        finally:
+            client.close()
+        return
+    n_workers = workers or os.cpu_count() or 1
+    cluster = LocalCluster(
+        n_workers=n_workers,
+        threads_per_worker=1,
+        processes=True,
+        host="127.0.0.1",
+        dashboard_address=None,
+        silence_logs=logging.ERROR,
+    )
+    try:
+        client = Client(cluster)
+        try:
+            client.register_plugin(_IgnoreSigint(), name="etswarm-ignore-sigint")
+            yield client
+        finally:
+            client.close()
+    finally:
+        cluster.close()
+
+
+def run_sweep(
+    spec: SweepSpec,
+    out_dir: str | Path,
+    *,
+    scheduler: str | None = None,
+    workers: int | None = None,
+    retry_failed: bool = False,
+    show_progress: bool = True,
+) -> SweepOutcome:
+    """Execute the runs of ``spec`` that have no record in ``out_dir``; write the table.
+
+    ``scheduler`` is a Dask scheduler address (``tcp://host:8786``); without it a local
+    cluster of ``workers`` processes (default: every core) is started and closed here.
+    Returns the outcome; an interrupt (Ctrl-C) is caught and reported as
+    ``interrupted=True`` after the table is written.
+    """
+    if workers is not None and workers < 1:
+        raise EtswarmError(f"--workers {workers}: must be at least 1")
+    if workers is not None and scheduler is not None:
+        raise EtswarmError("--workers applies to the local cluster only, not with --scheduler")
+    check_task(spec)
+    store = RunStore(out_dir)
+    store.create()
+    if spec.path.is_file():
+        atomic_write_bytes(store.spec_path, spec.path.read_bytes())
+    todo, skipped = plan_runs(spec, store, retry_failed)
+    ran = failed = 0
+    interrupted = False
+    if todo:
+        search_dir = str(spec.path.parent.resolve())
+        progress = SweepProgress(spec.name, len(todo), skipped, enabled=show_progress)
+        try:
+            with dask_client(scheduler, workers) as client, progress:
+                by_key: dict[str, Run] = {}
+                futures = []
+                for run in todo:
+                    future = client.submit(
+                        execute_run,
+                        spec.task,
+                        run.params,
+                        run.run_id,
+                        search_dir,
+                        key=f"etswarm-run-{run.run_id}",
+                        pure=False,
+                    )
+                    by_key[future.key] = run
+                    futures.append(future)
+                try:
+                    for future in as_completed(futures):
+                        record = _collect(future, by_key[future.key], spec.task)
+                        if record is None:
+                            continue
+                        store.write(record)
+                        ok = record["status"] == "ok"
+                        ran += 1
+                        failed += 0 if ok else 1
+                        progress.advance(ok)
+                except KeyboardInterrupt:
+                    interrupted = True
+                    client.cancel([f for f in futures if not f.done()])
+        except KeyboardInterrupt:
+            interrupted = True
+    table = write_results(spec, store)
+    kept = sum(1 for run in spec.runs() if store.status(run.run_id) is not None)
+    return SweepOutcome(
+        out_dir=store.out_dir,
+        total=len(spec.runs()),
+        skipped=skipped,
+        ran=ran,
+        failed=failed,
+        pending=len(todo) - ran,
+        kept=kept,
+        interrupted=interrupted,
+        table=table,
+    )
+
+
+def _collect(future: Any, run: Run, task: str) -> dict[str, Any] | None:
+    """The record of a finished future; None when it was cancelled (not a result)."""
+    if future.status == "cancelled":
+        return None
+    try:
+        record = future.result()
+    except Exception as err:  # the worker died or the future was lost: still a result
+        return error_record(task, run.params, run.run_id, err, traceback.format_exc())
+    return record
+
+
+def write_results(spec: SweepSpec, store: RunStore) -> Path:
+    """Write ``results.parquet`` from the records of the spec's runs; returns its path."""
+    records = [r for run in spec.runs() if (r := store.read(run.run_id)) is not None]
+    frame = build_table(records, spec.parameters)
+    meta = {
+        "sweep": spec.name,
+        "task": spec.task,
+        "parameters": list(spec.parameters),
+        "swept": list(spec.swept),
+        "spec": str(spec.path.resolve()),
+    }
+    return write_table(frame, store.table_path, meta)
