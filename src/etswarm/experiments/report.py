@@ -75,9 +75,11 @@ def wilson_interval(successes: int, trials: int, z: float = 1.96) -> tuple[float
 
 
 def format_duration(seconds: float | None) -> str:
-    """``8.2 s``, ``12 min 34 s``, ``2 h 50 min 8 s``; ``-`` when missing."""
+    """``0.25 s``, ``18.2 s``, ``12 min 34 s``, ``2 h 50 min 8 s``; ``-`` when missing."""
     if seconds is None or not math.isfinite(seconds):
         return "-"
+    if seconds < 10:
+        return f"{seconds:.2f} s"
     if seconds < 60:
         return f"{seconds:.1f} s"
     whole = round(seconds)
