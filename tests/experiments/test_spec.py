@@ -123,3 +123,12 @@ def test_missing_file_and_bad_toml_are_one_line_errors(tmp_path: Path) -> None:
     with pytest.raises(EtswarmError, match="not valid TOML") as info:
         load_spec(spec_file(tmp_path, "[sweep\nname = 1\n"))
     assert "\n" not in str(info.value)
+
+
+@pytest.mark.parametrize(
+    "path", sorted((Path(__file__).parents[2] / "examples" / "sweeps").glob("*.toml")),
+    ids=lambda p: p.name,
+)
+def test_example_specs_are_valid(path: Path) -> None:
+    spec = load_spec(path)
+    assert spec.runs() and spec.task == DEFAULT_TASK
