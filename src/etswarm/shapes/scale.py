@@ -9,10 +9,13 @@ Method (deterministic, exact where it matters):
 2. *Geometric shrink*: with ``s = √(n/N)`` and ``c`` the centroid of the original's tags, every
    candidate site ``p`` is scored by the field, linearly interpolated on the lattice triangle
    holding its pre-image ``c + (p − c)/s``. Sites are ranked by score, ties by (X, Y).
-3. *Constructible growth*: from the best-ranked site and its best-ranked adjacent pair (a seed
-   triangle), add the best-ranked site that touches two adjacent placed sites, until n sites.
-   The result is connected, constructible and has exactly n cells; it approximates the ``n``
-   best-scored sites, i.e. the original shrunk by ``s`` about its centroid.
+3. *Constructible growth*: the ``n`` best-ranked sites are the target. From the best-ranked
+   site and its best-ranked adjacent pair (a seed triangle), repeatedly add a site that touches
+   two adjacent placed sites: a target site if one can be added (best rank first), else a
+   "bridge" site next to an unplaced target site (so a one-site-wide arm of the target is
+   widened to two and kept), else the best-ranked site. Stop at n sites. The result is
+   connected, constructible, has exactly n cells and approximates the original shrunk by
+   ``s`` about its centroid.
 
 Everything uses IEEE-exact operations (integer sums, ``+ − × ÷ √``, comparisons) and stable
 integer tie-breaks: no set or dict iteration order, no transcendental functions, no
@@ -203,7 +206,18 @@ def _grow(field: DistanceField, n: int) -> np.ndarray:
     off = [ox * stride + oy for ox, oy in _OFFSETS]
     placed = bytearray(len(rank_l))
     pushed = bytearray(len(rank_l))
-    heap: list[int] = []
+    heap: list[tuple[int, int]] = []  # (tier, rank); see tier()
+
+    def tier(c: int) -> int:
+        """0: a target site (rank < n); 1: a bridge, next to an unplaced target site; 2: other.
+        A site's tier only ever gets worse as sites are placed."""
+        if rank_l[c] < n:
+            return 0
+        for o in off:
+            m = c + o
+            if 0 <= rank_l[m] < n and not placed[m]:
+                return 1
+        return 2
 
     def place(c: int) -> None:
         placed[c] = 1
@@ -213,7 +227,7 @@ def _grow(field: DistanceField, n: int) -> np.ndarray:
                 continue
             if placed[c + off[k - 1]] or placed[c + off[(k + 1) % 6]]:
                 pushed[m] = 1
-                heapq.heappush(heap, rank_l[m])
+                heapq.heappush(heap, (tier(m), rank_l[m]))
 
     c0 = by_rank[0]
     best_pair: tuple[int, int, int, int] | None = None
@@ -233,8 +247,13 @@ def _grow(field: DistanceField, n: int) -> np.ndarray:
     while count < n:
         if not heap:  # pragma: no cover - the candidate box is far larger than n
             raise RuntimeError("scale: ran out of candidate sites")
-        c = by_rank[heapq.heappop(heap)]
+        t, r = heapq.heappop(heap)
+        c = by_rank[r]
         if placed[c]:
+            continue
+        now = tier(c)
+        if now != t:  # got worse since pushed: requeue (lazy update)
+            heapq.heappush(heap, (now, r))
             continue
         place(c)
         count += 1
