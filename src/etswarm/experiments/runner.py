@@ -3,9 +3,10 @@
 By default the runs execute on a ``distributed.LocalCluster`` started here (one process
 per core, one thread each, loopback only); with ``scheduler`` they go to an existing
 cluster. Records are written by this process (the client), so workers need no access to
-the output folder. Runs whose record exists are skipped (failed ones rerun only with
-``retry_failed``). On KeyboardInterrupt the pending futures are cancelled, the table is
-written from what finished and the cluster is closed; the outcome says so.
+the output folder. Runs whose record exists (made by the same task) are skipped; failed
+ones rerun only with ``retry_failed``. On KeyboardInterrupt the pending futures are
+cancelled, the table is written from what finished and the cluster is closed; the outcome
+says so.
 """
 
 from __future__ import annotations
@@ -74,12 +75,20 @@ def plan_runs(spec: SweepSpec, store: RunStore, retry_failed: bool) -> tuple[lis
     todo: list[Run] = []
     skipped = 0
     for run in spec.runs():
-        status = store.status(run.run_id)
+        status = _status(store, run, spec.task)
         if status == "ok" or (status == "error" and not retry_failed):
             skipped += 1
         else:
             todo.append(run)
     return todo, skipped
+
+
+def _status(store: RunStore, run: Run, task: str) -> str | None:
+    """The status of ``run``'s record, None when absent or made by another task."""
+    record = store.read(run.run_id)
+    if record is None or record.get("task", task) != task:
+        return None
+    return record.get("status")
 
 
 def check_task(spec: SweepSpec) -> None:
@@ -171,7 +180,7 @@ def run_sweep(
         try:
             with dask_client(scheduler, workers) as client, progress:
                 by_key: dict[str, Run] = {}
-                futures = []
+                pending: dict[str, Any] = {}  # key -> future; dropped once stored
                 for run in todo:
                     future = client.submit(
                         execute_run,
@@ -183,9 +192,10 @@ def run_sweep(
                         pure=False,
                     )
                     by_key[future.key] = run
-                    futures.append(future)
+                    pending[future.key] = future
                 try:
-                    for future in as_completed(futures):
+                    for future in as_completed(list(pending.values())):
+                        pending.pop(future.key, None)  # frees the result on the cluster
                         record = _collect(future, by_key[future.key], spec.task)
                         if record is None:
                             continue
@@ -196,11 +206,11 @@ def run_sweep(
                         progress.advance(ok)
                 except KeyboardInterrupt:
                     interrupted = True
-                    client.cancel([f for f in futures if not f.done()])
+                    client.cancel(list(pending.values()))
         except KeyboardInterrupt:
             interrupted = True
     table = write_results(spec, store)
-    kept = sum(1 for run in spec.runs() if store.status(run.run_id) is not None)
+    kept = sum(1 for run in spec.runs() if _status(store, run, spec.task) is not None)
     return SweepOutcome(
         out_dir=store.out_dir,
         total=len(spec.runs()),
@@ -227,7 +237,11 @@ def _collect(future: Any, run: Run, task: str) -> dict[str, Any] | None:
 
 def write_results(spec: SweepSpec, store: RunStore) -> Path:
     """Write ``results.parquet`` from the records of the spec's runs; returns its path."""
-    records = [r for run in spec.runs() if (r := store.read(run.run_id)) is not None]
+    records = [
+        r
+        for run in spec.runs()
+        if (r := store.read(run.run_id)) is not None and r.get("task", spec.task) == spec.task
+    ]
     frame = build_table(records, spec.parameters)
     meta = {
         "sweep": spec.name,
