@@ -1,0 +1,88 @@
+"""Phase 3 of a tick: motors move the robots (Kilobot / Kilombo geometry).
+
+Forward (motor 1): the centre advances ``speed * dt`` along the heading. Turning left
+(motor 2) pivots the body counter-clockwise by ``turn_rate * dt`` about the left leg, which
+sits on the rim at angle ``heading + leg_angle`` (leg_angle = 125.5 deg: the rear-left
+leg); turning right (motor 3) pivots clockwise about the rear-right leg at
+``heading - leg_angle``. Optional noise while moving: a relative per-tick speed jitter
+N(0, speed_noise) and a heading jitter N(0, heading_noise) rad, from the motion stream.
+With walls the centre is kept inside [r, arena - r]^2. Dead or absent robots do not move.
+Every robot that moved is refiled in the grid and appended to the collision work list.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from numba import njit
+
+from etswarm.sim.neighbours import cell_of, relink
+
+
+@njit(cache=True, inline="always")
+def clamp_to_arena(v, radius, arena):
+    """Keep coordinate ``v`` (mm) of a centre inside walls at 0 and ``arena``."""
+    if v < radius:
+        return radius
+    if v > arena - radius:
+        return arena - radius
+    return v
+
+
+@njit(cache=True)
+def move_phase(cfg, grid, pos, heading, motor, alive, present, speed, turn_rate,
+               dirty, dirty_flag, n_dirty, rng):
+    """Advance every robot whose motor is on by one tick; returns the work-list length."""
+    dt = cfg.dt
+    r = cfg.radius
+    leg = cfg.leg_angle
+    walls = cfg.arena > 0.0
+    two_pi = 2.0 * np.pi
+    head, nxt, prv, cell_x, cell_y = grid.head, grid.nxt, grid.prv, grid.cell_x, grid.cell_y
+    known_pos = grid.known_pos
+    inv = grid.inv_cell[0]
+    for i in range(pos.shape[0]):
+        m = motor[i]
+        if m == 0 or not alive[i] or not present[i]:
+            continue
+        h = heading[i]
+        if m == 1:
+            step = speed[i] * dt
+            if cfg.speed_noise > 0.0:
+                step *= 1.0 + cfg.speed_noise * rng.standard_normal()
+            x = pos[i, 0] + step * np.cos(h)
+            y = pos[i, 1] + step * np.sin(h)
+            h_new = h
+        else:
+            dth = turn_rate[i] * dt
+            if m == 2:
+                a = h + leg
+            else:
+                a = h - leg
+                dth = -dth
+            # the centre rotates by dth about the leg at pos + r*(cos a, sin a)
+            x = pos[i, 0] + r * (np.cos(a) - np.cos(a + dth))
+            y = pos[i, 1] + r * (np.sin(a) - np.sin(a + dth))
+            h_new = h + dth
+        if cfg.heading_noise > 0.0:
+            h_new += cfg.heading_noise * rng.standard_normal()
+        if h_new > np.pi:
+            h_new -= two_pi
+        elif h_new <= -np.pi:
+            h_new += two_pi
+        if walls:
+            x = clamp_to_arena(x, r, cfg.arena)
+            y = clamp_to_arena(y, r, cfg.arena)
+        pos[i, 0] = x
+        pos[i, 1] = y
+        heading[i] = h_new
+        known_pos[i, 0] = x
+        known_pos[i, 1] = y
+        cx = cell_of(x, inv)
+        cy = cell_of(y, inv)
+        if cx != cell_x[i] or cy != cell_y[i]:
+            relink(head, nxt, prv, cell_x, cell_y, i, cx, cy)
+        if dirty_flag[i] == 0:
+            dirty_flag[i] = 1
+            dirty[n_dirty] = i
+            n_dirty += 1
+    return n_dirty

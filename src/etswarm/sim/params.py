@@ -1,0 +1,174 @@
+"""Simulator parameters: one dataclass, loadable from TOML, overridable by name.
+
+Defaults follow DESIGN §2 (Kilombo's defaults unless noted). Every value is checked when
+the object is built; a bad one raises :class:`~etswarm.errors.EtswarmError` naming the key
+(and the file it came from).
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+import tomllib
+from dataclasses import dataclass, field, fields
+from pathlib import Path
+from typing import Any, NamedTuple
+
+from etswarm.errors import EtswarmError
+
+#: (minimum, maximum) allowed for each numeric parameter; None = unbounded on that side.
+_RANGES: dict[str, tuple[float | None, float | None]] = {
+    "ticks_per_s": (1, 10_000),
+    "tx_period": (1, 100_000),
+    "comm_range_mm": (0, 10_000),
+    "loss": (0, 1),
+    "dist_noise_mm": (0, 1_000),
+    "body_radius_mm": (0.1, 1_000),
+    "speed_mm_s": (0, 1_000),
+    "turn_rate_deg_s": (0, 3_600),
+    "speed_spread": (0, 0.9),
+    "turn_rate_spread": (0, 0.9),
+    "speed_noise": (0, 1),
+    "heading_noise_deg": (0, 180),
+    "leg_angle_deg": (0, 180),
+    "inbox_capacity": (1, 4096),
+    "arena_mm": (0, 1e9),
+    "overlap_tolerance_mm": (0, 100),
+    "max_push_passes": (1, 10_000),
+}
+
+
+class KernelConfig(NamedTuple):
+    """The parameters in the form the compiled phases read them (SI-ish units: mm, s, rad)."""
+
+    dt: float
+    tx_period: int
+    comm_range: float
+    loss: float
+    dist_noise: float
+    radius: float
+    speed_noise: float
+    heading_noise: float
+    leg_angle: float
+    arena: float
+    max_passes: int
+
+
+@dataclass(frozen=True)
+class SimParams:
+    """Everything the world physics and radio need. Units in the names.
+
+    ``speed_spread`` and ``turn_rate_spread`` are relative standard deviations of the
+    per-robot calibration (speed_i = speed_mm_s * (1 + spread * N(0,1)), clipped to
+    [0.1, 1.9] x nominal). ``speed_noise`` is the relative std of a per-tick speed jitter
+    and ``heading_noise_deg`` the std of a per-tick heading jitter while a robot moves.
+    ``arena_mm`` > 0 puts walls around the square [0, arena_mm]^2; 0 means no walls.
+    ``overlap_tolerance_mm`` is how much two bodies may still overlap after the collision
+    phase gave up (it resolves overlaps exactly unless ``max_push_passes`` runs out).
+    """
+
+    ticks_per_s: int = 31
+    tx_period: int = 15
+    comm_range_mm: float = 70.0
+    loss: float = 0.0
+    dist_noise_mm: float = 0.0
+    body_radius_mm: float = 16.5
+    speed_mm_s: float = 7.0
+    turn_rate_deg_s: float = 13.0
+    speed_spread: float = 0.0
+    turn_rate_spread: float = 0.0
+    speed_noise: float = 0.0
+    heading_noise_deg: float = 0.0
+    leg_angle_deg: float = 125.5
+    inbox_capacity: int = 32
+    arena_mm: float = 0.0
+    overlap_tolerance_mm: float = 0.5
+    max_push_passes: int = 64
+    source: str = field(default="", compare=False, repr=False)
+
+    def __post_init__(self) -> None:
+        where = f" in {self.source}" if self.source else ""
+        for f in fields(self):
+            bad = f"sim parameter {f.name}{where}:"
+            if f.name == "source":
+                continue
+            value = getattr(self, f.name)
+            want_int = f.type in (int, "int")
+            if isinstance(value, bool) or not isinstance(value, int | float):
+                raise EtswarmError(f"{bad} expected a number, got {value!r}")
+            if want_int and not float(value).is_integer():
+                raise EtswarmError(f"{bad} expected an integer, got {value!r}")
+            if not math.isfinite(value):
+                raise EtswarmError(f"{bad} must be finite, got {value!r}")
+            lo, hi = _RANGES[f.name]
+            if (lo is not None and value < lo) or (hi is not None and value > hi):
+                raise EtswarmError(f"{bad} {value!r} is outside [{lo}, {hi}]")
+            object.__setattr__(self, f.name, int(value) if want_int else float(value))
+
+    @property
+    def dt(self) -> float:
+        """Seconds per tick."""
+        return 1.0 / self.ticks_per_s
+
+    @property
+    def walls(self) -> bool:
+        """True when the arena has walls."""
+        return self.arena_mm > 0
+
+    def kernel_config(self) -> KernelConfig:
+        """The values the compiled kernel reads, converted to rad and seconds."""
+        return KernelConfig(
+            dt=1.0 / self.ticks_per_s,
+            tx_period=self.tx_period,
+            comm_range=self.comm_range_mm,
+            loss=self.loss,
+            dist_noise=self.dist_noise_mm,
+            radius=self.body_radius_mm,
+            speed_noise=self.speed_noise,
+            heading_noise=math.radians(self.heading_noise_deg),
+            leg_angle=math.radians(self.leg_angle_deg),
+            arena=self.arena_mm,
+            max_passes=self.max_push_passes,
+        )
+
+    def with_overrides(self, **overrides: Any) -> SimParams:
+        """A copy with some values replaced; ``None`` values are ignored (CLI defaults)."""
+        given = {k: v for k, v in overrides.items() if v is not None}
+        names = {f.name for f in fields(self)} - {"source"}
+        for key in given:
+            if key not in names:
+                known = ", ".join(sorted(names))
+                raise EtswarmError(f"unknown sim parameter {key!r} (known: {known})")
+        return dataclasses.replace(self, **given)
+
+    def to_dict(self) -> dict[str, Any]:
+        """The parameters as a plain dict (for headers and final-state JSON)."""
+        return {f.name: getattr(self, f.name) for f in fields(self) if f.name != "source"}
+
+    @classmethod
+    def from_mapping(cls, values: dict[str, Any], source: str = "") -> SimParams:
+        """Build from a dict (e.g. a TOML table); unknown keys are an error."""
+        names = {f.name for f in fields(cls)} - {"source"}
+        where = f" in {source}" if source else ""
+        for key in values:
+            if key not in names:
+                raise EtswarmError(f"unknown sim parameter {key!r}{where}")
+        return cls(**values, source=source)
+
+    @classmethod
+    def from_toml(cls, path: str | Path) -> SimParams:
+        """Read a TOML file: keys at top level, or in a ``[sim]`` table (others ignored)."""
+        path = Path(path)
+        try:
+            data = tomllib.loads(path.read_text(encoding="utf-8"))
+        except FileNotFoundError:
+            raise EtswarmError(f"config file {path} not found") from None
+        except tomllib.TOMLDecodeError as err:
+            raise EtswarmError(f"config file {path}: invalid TOML ({err})") from None
+        if "sim" in data and isinstance(data["sim"], dict):
+            # Other tables belong to other parts (e.g. [et]); loose keys are a mistake.
+            extra = [k for k, v in data.items() if k != "sim" and not isinstance(v, dict)]
+            if extra:
+                raise EtswarmError(f"unknown sim parameter {extra[0]!r} in {path}")
+            data = data["sim"]
+        return cls.from_mapping(data, source=str(path))

@@ -1,0 +1,153 @@
+"""The simulator: a world, a controller, parameters and seeded streams, stepped in ticks.
+
+Each tick runs fixed phases: (1) radio: clear inboxes, deliver this tick's broadcasts;
+(2) control: the controller reads inboxes and writes motor, led, out_*; (3) move;
+(4) collide; (5) ``world.tick += 1``.
+
+Two kinds of controller plug in:
+
+* **fast path**: an object with ``step`` (an ``@njit(cache=True)`` function with the
+  signature ``step(tick, alive, in_count, in_type, in_data, in_dist, motor, led, out_on,
+  out_type, out_data, mem, rng)``) and ``mem`` (a tuple whose element 0 is a (1,) int64
+  stop flag). :meth:`Simulator.run_ticks` then runs all ``n`` ticks inside one compiled
+  call (see :mod:`etswarm.sim.kernel`). If the controller sets ``mem[0][0] != 0`` during
+  its control phase, the kernel finishes that tick and returns early; the flag is left
+  set for the host to read and clear.
+* **slow path**: any object with a Python method ``step(view)``, where ``view`` is a
+  :class:`ControlView` of arrays for all robots; one Python call per tick.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+
+from etswarm.errors import EtswarmError
+from etswarm.seeding import stream
+from etswarm.sim.collide import collide_phase
+from etswarm.sim.kernel import load_kernel
+from etswarm.sim.motion import move_phase
+from etswarm.sim.neighbours import Grid, grid_sync, make_grid
+from etswarm.sim.params import SimParams
+from etswarm.sim.radio import radio_phase
+from etswarm.sim.world import World
+
+
+@dataclass
+class ControlView:
+    """What a slow-path controller sees and writes (arrays are the World's own).
+
+    Read: ``tick``, ``alive`` (N,), ``in_count`` (N,), ``in_type`` (N, K), ``in_data``
+    (N, K, 9), ``in_dist`` (N, K) mm. Write: ``motor`` (N,), ``led`` (N,), ``out_on`` (N,),
+    ``out_type`` (N,), ``out_data`` (N, 9). ``rng`` is the run's controller stream.
+    """
+
+    tick: int
+    alive: np.ndarray
+    in_count: np.ndarray
+    in_type: np.ndarray
+    in_data: np.ndarray
+    in_dist: np.ndarray
+    motor: np.ndarray
+    led: np.ndarray
+    out_on: np.ndarray
+    out_type: np.ndarray
+    out_data: np.ndarray
+    rng: np.random.Generator
+
+
+def is_fast_controller(controller: Any) -> bool:
+    """True when ``controller`` follows the compiled (fast-path) protocol."""
+    return hasattr(controller, "mem") and hasattr(getattr(controller, "step", None), "py_func")
+
+
+class Simulator:
+    """Runs ``controller`` on ``world`` with ``params``; randomness from ``seed``'s streams.
+
+    Streams: "motion" (motion noise), "radio" (loss and distance noise), "controller"
+    (passed to the controller). The world's calibration and placement used children of
+    "motion", "radio" and "placement" when it was built.
+    """
+
+    def __init__(self, world: World, controller: Any, params: SimParams | None = None,
+                 seed: int = 0) -> None:
+        self.world = world
+        self.controller = controller
+        self.params = params or SimParams()
+        self.seed = int(seed)
+        if world.inbox_capacity != self.params.inbox_capacity:
+            raise EtswarmError(
+                f"world inbox capacity {world.inbox_capacity} differs from sim parameter "
+                f"inbox_capacity {self.params.inbox_capacity}"
+            )
+        self.rng_motion = stream(self.seed, "motion")
+        self.rng_radio = stream(self.seed, "radio")
+        self.rng_controller = stream(self.seed, "controller")
+        self.cfg = self.params.kernel_config()
+        n = world.n
+        self.grid: Grid = make_grid(
+            n, max(4.0 * self.params.body_radius_mm, 0.5 * self.params.comm_range_mm))
+        self._dirty = np.zeros(n, dtype=np.int32)
+        self._dirty_flag = np.zeros(n, dtype=np.uint8)
+        self._spare = np.zeros(n, dtype=np.int32)
+        self.fast = is_fast_controller(controller)
+        if self.fast:
+            mem = controller.mem
+            if (not isinstance(mem, tuple) or not mem or not isinstance(mem[0], np.ndarray)
+                    or mem[0].dtype != np.int64 or mem[0].shape != (1,)):
+                raise TypeError("controller.mem must be a tuple whose element 0 is a (1,) "
+                                "int64 stop-flag array")
+            self._kernel = load_kernel(controller.step)
+        elif not callable(getattr(controller, "step", None)):
+            raise TypeError("controller needs a step(view) method or an njit step + mem")
+
+    @property
+    def stop_requested(self) -> bool:
+        """True when a fast controller has raised its stop flag (mem[0][0] != 0)."""
+        return bool(self.fast and self.controller.mem[0][0] != 0)
+
+    def run_ticks(self, n: int) -> int:
+        """Run up to ``n`` ticks; return how many ran (fewer if the controller asked to stop)."""
+        if n <= 0:
+            return 0
+        w = self.world
+        if self.fast:
+            done = int(self._kernel(
+                int(n), int(w.tick), self.cfg, self.grid, w.pos, w.heading, w.motor, w.led,
+                w.alive, w.present, w.speed, w.turn_rate, w.tx_phase, w.out_on, w.out_type,
+                w.out_data, w.in_count, w.in_type, w.in_data, w.in_dist, w.counters,
+                self._dirty, self._dirty_flag, self._spare, self.rng_motion, self.rng_radio,
+                self.rng_controller, self.controller.mem,
+            ))
+            w.tick += done
+            return done
+        for k in range(n):
+            self._slow_tick()
+            if getattr(self.controller, "stop_requested", False):
+                return k + 1
+        return n
+
+    def _slow_tick(self) -> None:
+        """One tick with a Python controller: the same phases as the compiled loop."""
+        w = self.world
+        g = self.grid
+        n_dirty = grid_sync(g, w.pos, w.present, self._dirty, self._dirty_flag, 0)
+        radio_phase(w.tick, self.cfg, g, w.pos, w.alive, w.present, w.tx_phase, w.out_on,
+                    w.out_type, w.out_data, w.in_count, w.in_type, w.in_data, w.in_dist,
+                    w.counters, self.rng_radio)
+        view = ControlView(w.tick, w.alive, w.in_count, w.in_type, w.in_data, w.in_dist,
+                           w.motor, w.led, w.out_on, w.out_type, w.out_data,
+                           self.rng_controller)
+        self.controller.step(view)
+        n_dirty = move_phase(self.cfg, g, w.pos, w.heading, w.motor, w.alive, w.present,
+                             w.speed, w.turn_rate, self._dirty, self._dirty_flag, n_dirty,
+                             self.rng_motion)
+        collide_phase(self.cfg, g, w.pos, self._dirty, self._dirty_flag, n_dirty,
+                      self._spare, w.counters)
+        w.tick += 1
+
+    def run_seconds(self, seconds: float) -> int:
+        """Run ``seconds`` of simulated time (rounded to whole ticks); return ticks run."""
+        return self.run_ticks(round(seconds * self.params.ticks_per_s))
