@@ -110,6 +110,7 @@ class VideoWriter:
                 quality=self.quality,
                 macro_block_size=1,
                 ffmpeg_log_level="error",
+                output_params=["-preset", "veryfast"],
             )
             self._ffmpeg.send(None)  # start the generator
         self._ffmpeg.send(arr.tobytes())
