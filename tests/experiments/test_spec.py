@@ -132,3 +132,27 @@ def test_missing_file_and_bad_toml_are_one_line_errors(tmp_path: Path) -> None:
 def test_example_specs_are_valid(path: Path) -> None:
     spec = load_spec(path)
     assert spec.runs() and spec.task == DEFAULT_TASK
+
+
+def test_a_case_may_have_its_own_seeds(tmp_path: Path) -> None:
+    text = """
+[sweep]
+name = "own"
+seeds = {start = 0, count = 3}
+[[cases]]
+shape = "T"
+[[cases]]
+shape = "starfish"
+seeds = [7]
+[[cases]]
+shape = "T"
+seeds = [2, 5]
+"""
+    spec = load_spec(spec_file(tmp_path, text))
+    assert spec.points == ({"shape": "T"}, {"shape": "starfish"})
+    assert [(r.params["shape"], r.params["seed"]) for r in spec.runs()] == [
+        ("T", 0), ("T", 1), ("T", 2), ("T", 5), ("starfish", 7),
+    ]
+    bad = text.replace("seeds = [7]", "seeds = []")
+    with pytest.raises(EtswarmError, match=r"cases\[2\]\.seeds: empty list"):
+        load_spec(spec_file(tmp_path, bad))

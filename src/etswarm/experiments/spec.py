@@ -17,9 +17,11 @@ A spec looks like::
     [[cases]]                                          # optional: explicit combinations
     shape = "dumbbell"
     damage = ["split x=0"]
+    seeds = [0, 1, 2]                                  # optional: this case's own seeds
 
-The runs are (every grid point, then every case) × every seed; each run's parameters are
-``fixed`` overlaid by the grid point or case, plus ``seed``. A run's id is a hash of the
+The runs are (every grid point, then every case) × every seed (a case's own ``seeds``
+replace the sweep's for that case); each run's parameters are ``fixed`` overlaid by the
+grid point or case, plus ``seed``. A run's id is a hash of the
 canonical JSON of its parameters, so it names the same run in every session and on every
 machine.
 """
@@ -61,7 +63,8 @@ class SweepSpec:
     """A validated sweep: what to run and with which parameter points and seeds.
 
     ``points`` are the parameter dicts without the seed, in spec order (grid first, then
-    cases), duplicates removed; ``swept`` names the parameters that differ between points.
+    cases), duplicates removed; ``point_seeds[i]`` are the seeds of ``points[i]`` (the
+    sweep's, or a case's own); ``swept`` names the parameters that differ between points.
     """
 
     path: Path
@@ -71,13 +74,18 @@ class SweepSpec:
     points: tuple[dict[str, Any], ...]
     description: str = ""
     swept: tuple[str, ...] = field(default=())
+    point_seeds: tuple[tuple[int, ...], ...] = field(default=())
+
+    def seeds_of(self, index: int) -> tuple[int, ...]:
+        """The seeds of ``points[index]``."""
+        return self.point_seeds[index] if self.point_seeds else self.seeds
 
     def runs(self) -> list[Run]:
         """Every (point, seed) as a Run, point-major, duplicates removed."""
         seen: set[str] = set()
         out: list[Run] = []
-        for point in self.points:
-            for seed in self.seeds:
+        for index, point in enumerate(self.points):
+            for seed in self.seeds_of(index):
                 params = {**point, "seed": seed}
                 rid = run_id(params)
                 if rid not in seen:
@@ -174,23 +182,34 @@ def parse_spec(data: dict[str, Any], path: str | Path = "<spec>") -> SweepSpec:
     cases = data.get("cases", [])
     if not isinstance(cases, list) or not all(isinstance(c, dict) for c in cases):
         raise fail("cases", "must be an array of tables ([[cases]])")
+    cases = [dict(c) for c in cases]
+    case_seeds: list[tuple[int, ...]] = []
     for number, case in enumerate(cases, start=1):
+        where = f"cases[{number}]"
+        own = seeds
+        if "seeds" in case:
+            own = _parse_seeds(case.pop("seeds"), fail, f"{where}.seeds")
         if not case:
-            raise fail(f"cases[{number}]", "empty case")
+            raise fail(where, "empty case")
         for key, value in case.items():
-            _check_param(f"cases[{number}].{key}", key, value, fail)
+            _check_param(f"{where}.{key}", key, value, fail)
+        case_seeds.append(own)
 
-    points: list[dict[str, Any]] = []
+    planned: list[tuple[dict[str, Any], tuple[int, ...]]] = []
     if grid or not cases:
         keys = list(grid)
         for combo in itertools.product(*(grid[k] for k in keys)):
-            points.append({**fixed, **dict(zip(keys, combo, strict=True))})
-    for case in cases:
-        points.append({**fixed, **case})
-    unique: dict[str, dict[str, Any]] = {}
-    for point in points:
-        unique.setdefault(canonical_json(point), point)
-    points = list(unique.values())
+            planned.append(({**fixed, **dict(zip(keys, combo, strict=True))}, seeds))
+    for case, own in zip(cases, case_seeds, strict=True):
+        planned.append(({**fixed, **case}, own))
+    unique: dict[str, tuple[dict[str, Any], tuple[int, ...]]] = {}
+    for point, own in planned:
+        text = canonical_json(point)
+        if text in unique:  # the same point twice: run the union of its seeds
+            before = unique[text][1]
+            own = before + tuple(s for s in own if s not in before)
+        unique[text] = (unique.get(text, (point, ()))[0], own)
+    points = [point for point, _ in unique.values()]
 
     names: dict[str, None] = {}
     for point in points:
@@ -206,31 +225,32 @@ def parse_spec(data: dict[str, Any], path: str | Path = "<spec>") -> SweepSpec:
         points=tuple(points),
         description=description,
         swept=swept,
+        point_seeds=tuple(own for _, own in unique.values()),
     )
 
 
-def _parse_seeds(value: Any, fail: Any) -> tuple[int, ...]:
+def _parse_seeds(value: Any, fail: Any, where: str = "sweep.seeds") -> tuple[int, ...]:
     if isinstance(value, list):
         if not value:
-            raise fail("sweep.seeds", "empty list")
+            raise fail(where, "empty list")
         for seed in value:
             if not _is_int(seed) or seed < 0:
-                raise fail("sweep.seeds", f"seeds must be integers >= 0, got {seed!r}")
+                raise fail(where, f"seeds must be integers >= 0, got {seed!r}")
         if len(set(value)) != len(value):
-            raise fail("sweep.seeds", "repeated seed")
+            raise fail(where, "repeated seed")
         return tuple(value)
     if isinstance(value, dict):
         unknown = sorted(set(value) - {"start", "count"})
         if unknown:
-            raise fail(f"sweep.seeds.{unknown[0]}", "unknown key (expected start, count)")
+            raise fail(f"{where}.{unknown[0]}", "unknown key (expected start, count)")
         start = value.get("start", 0)
         count = value.get("count")
         if not _is_int(start) or start < 0:
-            raise fail("sweep.seeds.start", f"must be an integer >= 0, got {start!r}")
+            raise fail(f"{where}.start", f"must be an integer >= 0, got {start!r}")
         if not _is_int(count) or count < 1:
-            raise fail("sweep.seeds.count", f"must be an integer >= 1, got {count!r}")
+            raise fail(f"{where}.count", f"must be an integer >= 1, got {count!r}")
         return tuple(range(start, start + count))
-    raise fail("sweep.seeds", f"must be a list of integers or a table, got {_kind(value)}")
+    raise fail(where, f"must be a list of integers or a table, got {_kind(value)}")
 
 
 def _check_param(where: str, key: str, value: Any, fail: Any) -> None:
