@@ -5,6 +5,7 @@ from __future__ import annotations
 import sys
 import time
 from types import TracebackType
+from typing import Any
 
 from rich.console import Console
 from rich.progress import (
@@ -105,7 +106,7 @@ class SweepProgress:
         extra = f" ({self.skipped} kept from before)" if self.skipped else ""
         return f"sweep {self.name}{extra}"
 
-    def _fields(self) -> dict[str, int]:
+    def _fields(self) -> dict[str, Any]:
         return {"done": self.done, "failed": self.failed, "remaining": self.remaining}
 
     def _line(self, what: str) -> None:

@@ -207,7 +207,7 @@ def plot_census_error(ok: pd.DataFrame, swept: Sequence[str], path: Path) -> Pat
     by = ["census"] if "census" in swept else []
     finite = errors[np.isfinite(errors)]
     lo, hi = math.floor(finite.min()), math.ceil(finite.max())
-    bins = np.arange(lo - 0.5, hi + 1.5, 1.0) if hi - lo <= 60 else 30
+    bins: Any = np.arange(lo - 0.5, hi + 1.5, 1.0) if hi - lo <= 60 else 30
     fig = Figure(figsize=(7, 4.5))
     ax = fig.subplots()
     for label, rows in _series(ok, by):

@@ -154,11 +154,13 @@ def run_sweep(
     workers: int | None = None,
     retry_failed: bool = False,
     show_progress: bool = True,
+    client: Client | None = None,
 ) -> SweepOutcome:
     """Execute the runs of ``spec`` that have no record in ``out_dir``; write the table.
 
     ``scheduler`` is a Dask scheduler address (``tcp://host:8786``); without it a local
-    cluster of ``workers`` processes (default: every core) is started and closed here.
+    cluster of ``workers`` processes (default: every core) is started and closed here;
+    with ``client`` (a connected distributed.Client) that client is used and left open.
     Returns the outcome; an interrupt (Ctrl-C) is caught and reported as
     ``interrupted=True`` after the table is written.
     """
@@ -178,9 +180,14 @@ def run_sweep(
         search_dir = str(spec.path.parent.resolve())
         progress = SweepProgress(spec.name, len(todo), skipped, enabled=show_progress)
         try:
-            with dask_client(scheduler, workers) as client, progress:
-                by_key: dict[str, Run] = {}
-                pending: dict[str, Any] = {}  # key -> future; dropped once stored
+            session = (
+                contextlib.nullcontext(client)
+                if client is not None
+                else dask_client(scheduler, workers)
+            )
+            with session as client, progress:
+                by_key: dict[Any, Run] = {}
+                pending: dict[Any, Any] = {}  # key -> future; dropped once stored
                 for run in todo:
                     future = client.submit(
                         execute_run,

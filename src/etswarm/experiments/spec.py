@@ -243,8 +243,8 @@ def _parse_seeds(value: Any, fail: Any, where: str = "sweep.seeds") -> tuple[int
         unknown = sorted(set(value) - {"start", "count"})
         if unknown:
             raise fail(f"{where}.{unknown[0]}", "unknown key (expected start, count)")
-        start = value.get("start", 0)
-        count = value.get("count")
+        start: Any = value.get("start", 0)
+        count: Any = value.get("count")
         if not _is_int(start) or start < 0:
             raise fail(f"{where}.start", f"must be an integer >= 0, got {start!r}")
         if not _is_int(count) or count < 1:
