@@ -192,3 +192,13 @@ def scaled_gene(cells: np.ndarray) -> Gene:
     xs = np.repeat(np.arange(nx, dtype=np.int64) + x0, ny)
     ys = np.tile(np.arange(ny, dtype=np.int64) + y0, nx)
     return Gene(x=xs, y=ys, flag=grid.ravel().astype(np.int64), nn=nn.ravel())
+
+
+def cells_to_bitmap(cells: np.ndarray) -> np.ndarray:
+    """(H, W) bool bitmap (row 0 = top) of a cell set, cropped to its bounding box.
+
+    The bitmap's own origin convention applies when it is read back, so tags come back
+    translated by a lattice vector (the shape itself is unchanged).
+    """
+    grid, _, _ = cells_bitmap(cells)  # [X - x0, Y - y0]
+    return np.ascontiguousarray(grid.T[::-1, :])
