@@ -78,3 +78,85 @@ def sample_scene(side: int = 6, queue: int = 8, seed: int = 0, spacing_mm: float
         events=["t=1:02:11 formed", "t=1:40:00 split x=60 mm", "t=2:10:05 Leader #14 census 12"],
         title="sample: triangle, side 6",
     )
+
+
+def sample_record(side: int = 6, frames: int = 240, dt_s: float = 30.0, seed: int = 0):  # type: ignore[no-untyped-def]
+    """A made-up recording: robots leave a queue, settle on a triangle one by one
+    (Search -> Inactive -> Active -> Stable), one side is cut away half-way, and the
+    rest regenerate (Danger -> Leader -> Active -> Stable). For tests and docs only.
+    """
+    from etswarm.viewer.record import RunRecord
+
+    rng = stream(seed, "viewer-sample-record")
+    tags = triangle_tags(side)
+    sites = lattice_xy(tags)
+    n = len(tags)
+    queue = np.stack([sites[0, 0] - 40.0 * (1.2 + np.arange(n)), np.full(n, sites[0, 1] - 36.0)], 1)
+    t = np.arange(frames) * dt_s
+    placed_at = np.linspace(0.05, 0.45, n) * t[-1]  # when robot i reaches its site
+    cut_t = 0.55 * t[-1]
+    cut = sites[:, 0] > np.median(sites[:, 0])  # robots removed by the cut
+    pos = np.zeros((frames, n, 2))
+    state = np.zeros((frames, n), np.uint8)
+    present = np.ones((frames, n), bool)
+    has_tag = np.zeros((frames, n), bool)
+    nn = np.zeros((frames, n), np.int64)
+    site_set = {tuple(x) for x in tags.tolist()}
+    full_nn = np.array(
+        [
+            sum(
+                (x + dx, y + dy) in site_set
+                for dx, dy in ((0, 1), (1, 1), (1, 0), (0, -1), (-1, -1), (-1, 0))
+            )
+            for x, y in tags.tolist()
+        ]
+    )
+    for k, tk in enumerate(t):
+        travel = np.clip((tk - (placed_at - 600)) / 600, 0, 1)[:, None]
+        pos[k] = queue + (sites - queue) * travel + rng.normal(0, 0.8, (n, 2))
+        placed = tk >= placed_at
+        st = np.where(placed, State.STABLE, np.where(travel[:, 0] > 0, State.SEARCH, State.QUEUED))
+        recent = placed & (tk < placed_at + 240)
+        st[recent] = State.ACTIVE
+        st[placed & (tk < placed_at + 90)] = State.INACTIVE
+        has_tag[k] = placed
+        nn[k] = full_nn
+        if tk >= cut_t:
+            present[k] = ~cut
+            since = tk - cut_t
+            st[~cut] = State.DANGER if since < 300 else State.STABLE
+            if 300 <= since < 600:
+                st[~cut] = State.ACTIVE
+                st[np.flatnonzero(~cut)[0]] = State.LEADER
+            if since >= 600:
+                kept = ~cut
+                sub = {tuple(x) for x in tags[kept].tolist()}
+                nn[k, kept] = [
+                    sum(
+                        (x + dx, y + dy) in sub
+                        for dx, dy in ((0, 1), (1, 1), (1, 0), (0, -1), (-1, -1), (-1, 0))
+                    )
+                    for x, y in tags[kept].tolist()
+                ]
+        state[k] = st
+    formed_t = float(placed_at[-1] + 240)
+    events = [
+        {"t_s": formed_t, "kind": "formed"},
+        {"t_s": cut_t, "kind": "damage", "how": "split"},
+        {"t_s": cut_t + 600, "kind": "formed"},
+    ]
+    return RunRecord(
+        t_s=t,
+        pos=pos,
+        heading=rng.uniform(0, 2 * math.pi, (frames, n)),
+        state=state,
+        present=present,
+        alive=np.ones((frames, n), bool),
+        tag=np.broadcast_to(tags, (frames, n, 2)).copy(),
+        has_tag=has_tag,
+        ts=np.broadcast_to(np.arange(1, n + 1), (frames, n)).copy(),
+        nn=nn,
+        events=events,
+        target_sites=sites,
+        title=f"sample triangle, side {side}",
+    )
