@@ -195,7 +195,12 @@ def _grow(field: DistanceField, n: int) -> np.ndarray:
     )
     px, py = PX.ravel(), PY.ravel()
     score = _scores(field, px.astype(np.float64), py.astype(np.float64), inv_s)
-    order = np.lexsort((py, px, -score))  # best score first, ties by (X, Y)
+    # best score first; ties (symmetric sites) by exact squared distance to the centroid, so
+    # equally good sites are taken evenly around the shape, then by (X, Y)
+    sx, sy = int(field.cells[:, 0].sum()), int(field.cells[:, 1].sum())
+    ex, ey = px * big_n - sx, py * big_n - sy
+    centre_d2 = ex * ex - ex * ey + ey * ey
+    order = np.lexsort((py, px, centre_d2, -score))
     # padded grid (kx+2, ky+2): border sites have rank -1 and are never placed
     stride = ky + 2
     flat = (px - X0 + 1) * stride + (py - Y0 + 1)

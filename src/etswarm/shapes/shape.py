@@ -139,7 +139,7 @@ def validate_bitmap(
     if an.constructible:
         return b, ()
     bad_idx = np.flatnonzero(~an.buildable)
-    bad = [tuple(int(v) for v in cells[i]) for i in bad_idx]
+    bad = [(int(cells[i, 0]), int(cells[i, 1])) for i in bad_idx]
     if not an.buildable.any():
         raise EtswarmError(
             f"{label}: no three mutually adjacent 1s, so no robot can ever localize; "
