@@ -28,3 +28,12 @@ __all__ = [
     "scaled_gene",
     "shape_from_bitmap",
 ]
+
+
+def __getattr__(name: str) -> object:
+    """``plot_gene``, ``plot_scaled`` and ``plot_cells`` load matplotlib only when first used."""
+    if name in ("plot_gene", "plot_scaled", "plot_cells"):
+        from etswarm.shapes import plotting
+
+        return getattr(plotting, name)
+    raise AttributeError(f"module 'etswarm.shapes' has no attribute {name!r}")

@@ -84,11 +84,21 @@ def _save(fig: Figure, path: str | Path) -> Path:
     return path
 
 
+def _figsize(aspect: float) -> tuple[float, float]:
+    """(width, height) inches for panels whose widths over height sum to ``aspect``."""
+    width = float(np.clip(4.5 * aspect, 6.0, 16.0))
+    height = float(np.clip(width / aspect, 2.5, 8.0)) + 0.8
+    return width, height
+
+
 def plot_gene(shape: Shape, path: str | Path) -> Path:
     """Draw the bitmap and its skewed lattice side by side, NN in each cell, origin in red."""
     g = shape.gene()
-    fig = Figure(figsize=(12, 6))
-    ax_b, ax_l = fig.subplots(1, 2)
+    h, w = shape.size
+    xy = tags_to_xy(np.stack([g.x, g.y], axis=1), 1.0)
+    lat_w, lat_h = np.ptp(xy[:, 0]) + 2.0, np.ptp(xy[:, 1]) + 2.0
+    fig = Figure(figsize=_figsize(w / h + lat_w / lat_h))
+    ax_b, ax_l = fig.subplots(1, 2, width_ratios=[w / h, lat_w / lat_h])
     _draw_bitmap(ax_b, shape)
     _draw_lattice(ax_l, g.x, g.y, g.flag, g.nn, "skewed triangular lattice (robots)")
     fig.suptitle(f"{shape.name}: {shape.n_cells} cells; NN in each cell, origin (0,0) in red")
