@@ -22,8 +22,12 @@ class LiveRun(Protocol):
         ticks_per_second: simulated control ticks per simulated second (31 for Kilobots).
     """
 
-    finished: bool
     ticks_per_second: int
+
+    @property
+    def finished(self) -> bool:
+        """True when advancing has no further effect."""
+        ...
 
     def advance(self, ticks: int) -> None:
         """Run ``ticks`` more control ticks (fewer when the run finishes first)."""

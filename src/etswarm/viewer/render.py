@@ -30,12 +30,16 @@ HEADING_BINS = 36
 _SUPERSAMPLE = 4
 _DEAD_KEY = 256  # colour-table index of killed robots
 
+def _rgb(row: np.ndarray) -> tuple[int, int, int]:
+    return (int(row[0]), int(row[1]), int(row[2]))
+
+
 #: (256 + 1, 3) fill colour per state code; the extra last row is "dead".
 FILL_LUT = np.array([palette.state_colour(c) for c in range(256)] + [palette.DEAD], dtype=np.uint8)
 
 #: Trail colour per fill key: the fill faded towards the background.
 TRAIL_LUT = np.array(
-    [palette.blend(tuple(int(v) for v in row), palette.BACKGROUND, 0.55) for row in FILL_LUT],
+    [palette.blend(_rgb(row), palette.BACKGROUND, 0.55) for row in FILL_LUT],
     dtype=np.uint8,
 )
 
@@ -97,7 +101,7 @@ def _disc_stamp(fill_key: int, r_px: float, heading_bin: int, ring: bool = False
         big = pygame.Surface((size * ss, size * ss), pygame.SRCALPHA)
         c = size * ss / 2
         r = r_px * ss
-        fill = tuple(int(v) for v in FILL_LUT[fill_key])
+        fill = _rgb(FILL_LUT[fill_key])
         pygame.draw.circle(big, fill, (c, c), r)
         if r_px >= 3:
             pygame.draw.circle(big, palette.OUTLINE, (c, c), r, width=max(1, int(ss * 0.9)))
@@ -278,7 +282,7 @@ def _draw_labels(
     ids = scene.robot_ids()
     shown = np.flatnonzero(scene.present & _visible(px, r_px, view))
     for i in shown.tolist():
-        colour = palette.contrasting(tuple(int(v) for v in FILL_LUT[fill_keys[i]]))
+        colour = palette.contrasting(_rgb(FILL_LUT[fill_keys[i]]))
         lines = [f"#{int(ids[i])}"]
         if scene.has_tag[i]:
             lines.append(f"{int(scene.tag[i, 0])},{int(scene.tag[i, 1])}")

@@ -118,7 +118,7 @@ class Scene:
 
 
 def _vector(values: object, n: int, dtype: type, name: str) -> np.ndarray:
-    arr = np.asarray(values, dtype=dtype)
+    arr: np.ndarray = np.asarray(values, dtype=dtype)
     if arr.shape != (n,):
         raise ValueError(f"Scene.{name} must have shape ({n},), got {arr.shape}")
     return arr

@@ -15,6 +15,7 @@ import contextlib
 from collections.abc import Iterable
 from pathlib import Path
 from types import TracebackType
+from typing import Any
 
 import numpy as np
 from PIL import Image
@@ -62,7 +63,7 @@ class VideoWriter:
         self.frame_count = 0
         self.size: tuple[int, int] | None = None  # (width, height) of the input frames
         self.closed = False
-        self._ffmpeg = None  # the imageio-ffmpeg write_frames generator
+        self._ffmpeg: Any = None  # the imageio-ffmpeg write_frames generator
         self._gif_frames: list[Image.Image] = []
         try:
             self.path.parent.mkdir(parents=True, exist_ok=True)
