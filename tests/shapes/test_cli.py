@@ -121,3 +121,11 @@ def test_console_entry_point_subprocess() -> None:
     assert out.stderr.strip() == (
         "etswarm: error: scale: N = 99 is out of range for shape 'T': choose 3 <= N <= 45"
     )
+
+
+def test_plot_to_a_bad_place_is_a_one_line_error(capsys: pytest.CaptureFixture[str],
+                                                  tmp_path: Path) -> None:
+    target = tmp_path / "missing" / "x.png"
+    code, _, err = run(capsys, "gene", "T", "--plot", str(target))
+    assert code == 2 and str(target) in err and "cannot write plot" in err
+    assert len(err.strip().splitlines()) == 1

@@ -93,3 +93,9 @@ def test_library_name_and_path_agree() -> None:
 
     assert load_shape("T").gene() == load_shape(library_path("T")).gene()
     assert load_shape(str(library_path("T"))).name == "T"
+
+
+def test_utf8_bom_and_crlf(tmp_path: Path) -> None:
+    p = tmp_path / "bom.txt"
+    p.write_bytes(b"\xef\xbb\xbf111\r\n111\r\n111\r\n")
+    assert load_shape(p).gene() == compute_gene(np.ones((3, 3), dtype=bool))

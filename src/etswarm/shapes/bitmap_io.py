@@ -54,7 +54,7 @@ def parse_bitmap_bytes(data: bytes, name: str) -> np.ndarray:
 
 def _as_text(data: bytes) -> str | None:
     try:
-        text = data.decode("utf-8")
+        text = data.decode("utf-8-sig")
     except UnicodeDecodeError:
         return None
     if any(ord(ch) < 32 and ch not in _CONTROL_OK for ch in text):
