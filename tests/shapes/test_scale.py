@@ -6,7 +6,7 @@ import time
 
 import numpy as np
 import pytest
-from hypothesis import given, settings
+from hypothesis import assume, given, settings
 from hypothesis import strategies as st
 
 from etswarm.errors import EtswarmError
@@ -14,7 +14,7 @@ from etswarm.shapes import LIBRARY_NAMES, load_shape, scale, scaled_gene
 from etswarm.shapes.lattice import is_connected, is_constructible
 from etswarm.shapes.scale import _field_cached, _scale_cached, geometric_shrink
 
-from .helpers import grown_bitmaps
+from .helpers import any_bitmaps, grown_bitmaps
 
 
 def check_valid(cells: np.ndarray, n: int) -> None:
@@ -30,6 +30,16 @@ def check_valid(cells: np.ndarray, n: int) -> None:
 @given(grown_bitmaps(min_size=3, max_size=70), st.floats(0.0, 1.0))
 def test_every_scaled_shape_is_valid(bitmap: np.ndarray, frac: float) -> None:
     big_n = int(bitmap.sum())
+    n = 3 + round(frac * (big_n - 3))
+    check_valid(scale(bitmap, n), n)
+
+
+@settings(max_examples=60, deadline=None)
+@given(any_bitmaps(max_side=10), st.floats(0.0, 1.0))
+def test_any_bitmap_scales_to_a_valid_shape(bitmap: np.ndarray, frac: float) -> None:
+    """Even a disconnected or unbuildable bitmap gives a valid scaled shape."""
+    big_n = int(bitmap.sum())
+    assume(big_n >= 3)
     n = 3 + round(frac * (big_n - 3))
     check_valid(scale(bitmap, n), n)
 
