@@ -118,3 +118,24 @@ def test_scaled_gene_nn_counts_within_the_set() -> None:
     got = np.stack([g.x[ones], g.y[ones]], axis=1)
     assert np.array_equal(got, cells)
     assert int(g.nn[ones].min()) >= 2
+
+
+def test_pinned_outputs() -> None:
+    """scale() is part of the protocol robots share: its outputs must never drift.
+
+    If this fails after an intended change to the method, every robot changes together, but
+    recorded runs and other machines running an older version will disagree: update the pin
+    deliberately.
+    """
+    import hashlib
+
+    assert scale(load_shape("T"), 12).tolist() == [
+        [-2, -1], [-2, 0], [-2, 2], [-1, -1], [-1, 0], [-1, 1], [-1, 2], [-1, 3], [0, 1],
+        [0, 2], [0, 3], [1, 2],
+    ]
+    h = hashlib.sha256()
+    for name in ("T", "starfish", "bigdisc"):
+        shape = load_shape(name)
+        for n in (3, shape.n_cells // 4, shape.n_cells // 2, shape.n_cells - 1):
+            h.update(scale(shape, n).astype("<i8").tobytes())
+    assert h.hexdigest() == "3bb2ba02c36714c5e0d271ef0044d0059117face3a62b5aff3e6e92e549e1a95"

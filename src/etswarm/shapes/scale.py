@@ -8,7 +8,8 @@ Method (deterministic, exact where it matters):
    the field is exact up to one correctly rounded square root. Cached per bitmap.
 2. *Geometric shrink*: with ``s = √(n/N)`` and ``c`` the centroid of the original's tags, every
    candidate site ``p`` is scored by the field, linearly interpolated on the lattice triangle
-   holding its pre-image ``c + (p − c)/s``. Sites are ranked by score, ties by (X, Y).
+   holding its pre-image ``c + (p − c)/s``. Sites are ranked by score; ties by the exact
+   (integer) squared distance to the centroid, then by (X, Y).
 3. *Constructible growth*: the ``n`` best-ranked sites are the target. From the best-ranked
    site and its best-ranked adjacent pair (a seed triangle), repeatedly add a site that touches
    two adjacent placed sites: a target site if one can be added (best rank first), else a
@@ -17,8 +18,8 @@ Method (deterministic, exact where it matters):
    connected, constructible, has exactly n cells and approximates the original shrunk by
    ``s`` about its centroid.
 
-Everything uses IEEE-exact operations (integer sums, ``+ − × ÷ √``, comparisons) and stable
-integer tie-breaks: no set or dict iteration order, no transcendental functions, no
+Everything uses correctly rounded IEEE operations (integer sums, ``+ − × ÷ √``, comparisons),
+integer tie-breaks and no set or dict iteration order; no transcendental functions and no
 floating-point reductions. Same (bitmap, n) gives the same cells on every machine.
 """
 
