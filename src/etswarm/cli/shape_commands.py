@@ -99,7 +99,11 @@ def gene(
     shape_spec: str, as_json: bool, as_csv: bool, plot_file: str | None, invert: bool,
     repair: bool,
 ) -> None:
-    """Print the gene (X, Y, F, NN for every pixel, sorted by X then Y) of SHAPE."""
+    """Print the gene (X, Y, F, NN for every pixel, sorted by X then Y) of SHAPE.
+
+    SHAPE is a library name (see `etswarm shapes`) or a file: text rows of 0/1 or ./#, PBM
+    (P1/P4), or an image (dark pixels are inside; --invert for light on dark).
+    """
     if as_json and as_csv:
         raise click.UsageError("choose one of --json and --csv")
     shape = _load(shape_spec, invert, repair)
@@ -134,7 +138,11 @@ def gene(
 def scale(
     shape_spec: str, n: int, as_json: bool, plot_file: str | None, invert: bool, repair: bool
 ) -> None:
-    """Scale SHAPE down to exactly N cells (3 <= N <= its cell count), as robots do after damage."""
+    """Scale SHAPE down to exactly N cells (3 <= N <= its cell count), as robots do after damage.
+
+    The result is connected and constructible, in the original's tag frame, and the same on
+    every machine. SHAPE is a library name or a file, as for `etswarm gene`.
+    """
     shape = _load(shape_spec, invert, repair)
     cells = scale_shape(shape, n)
     if plot_file:
