@@ -1,0 +1,95 @@
+"""Per-robot memory of the ET controller: column layouts and allocation.
+
+A robot's memory is one row of ``ri`` (int64 fields) plus its neighbour table, one
+``(M, NB_FIELDS)`` block of ``nb`` and ``(M,)`` of ``nb_dist``. These are the robot's own
+memory only; the controller never reads another robot's row.
+
+``mem`` passed to the simulator is the tuple
+``(stop, ri, nb, nb_dist, gene_flag, gene_nn, ci, cf)``:
+
+- ``stop``       (1,) int64: nonzero asks the simulator to end the chunk (host work needed)
+- ``ri``         (N, R_FIELDS) int64: the fields ``R_*`` below
+- ``nb``         (N, M, NB_FIELDS) int64: neighbour table, fields ``NB_*``; NB_ID -1 = empty
+- ``nb_dist``    (N, M) float64: last distance estimate to that neighbour, mm
+- ``gene_flag``  (GX, GY) uint8 and ``gene_nn`` (GX, GY) int8: the gene as dense grids,
+  indexed by (X - ci[C_GENE_X0], Y - ci[C_GENE_Y0]); outside the grid means flag 0
+- ``ci``, ``cf``: packed constants (see ``params``)
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from etswarm.algorithm.states import State
+
+# Per-robot integer fields.
+R_STATE = 0
+R_TAG_X = 1
+R_TAG_Y = 2
+R_NN = 3  # neighbours the gene wants at this tag
+R_TS = 4  # timestep (order of arrival)
+R_SINCE = 5  # tick of the last state change
+R_QMIN = 6  # lowest Queued ID this robot knows of
+R_QMIN_SINCE = 7  # tick R_QMIN last changed
+R_FLOOR = 8  # release floor: IDs <= this have left the repository (-1: none)
+R_FLOOR_SINCE = 9  # tick R_FLOOR last changed
+R_RELEASED = 10  # robots released so far, as far as this robot knows
+R_SUB = 11  # search sub-state (SUB_*)
+R_SUB_SINCE = 12
+R_CAND_X = 13  # site being settled on
+R_CAND_Y = 14
+R_COOLDOWN = 15  # tick until which site candidates are ignored
+R_YIELD_SINCE = 16  # tick yielding began (-1: not yielding)
+R_COUNT = 17  # placed lattice neighbours heard (last evaluation)
+R_BELOW_SINCE = 18  # tick the count fell below NN while Stable (-1: not below)
+R_QUASI_UNTIL = 19
+R_EPOCH = 20  # target epoch (bumped by regeneration)
+# A searcher tracks the distance trend of two robots, each in four consecutive fields
+# (ID or -1, tick of the last reading used, that reading in 1/16 mm, trend: -1 closing
+# in, +1 drawing away, 0 unknown): the stationary robot it steers by, and the nearest
+# lower-ID searcher it may yield to.
+R_REF_ID = 21
+R_REF_TREND = 24
+R_YLD_ID = 25
+R_YLD_TREND = 28
+R_FIELDS = 29
+
+SUB_FOLLOW = 0
+SUB_SETTLE = 1
+
+# Neighbour-table fields.
+NB_ID = 0
+NB_STATE = 1
+NB_PREV = 2  # the state before the last change (-1: none seen)
+NB_LAST = 3  # tick last heard
+NB_TX = 4
+NB_TY = 5
+NB_TS = 6
+NB_QMIN = 7
+NB_FLOOR = 8
+NB_RELEASED = 9
+NB_FIELDS = 10
+
+#: Neighbour-table slots per robot (a lattice site has 6 neighbours and 6 at ~1.73 d).
+NB_SLOTS = 16
+
+
+def allocate(n_robots: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Return zeroed ``(ri, nb, nb_dist)`` for ``n_robots`` robots, all Queued.
+
+    Shapes: ri (N, R_FIELDS) int64, nb (N, NB_SLOTS, NB_FIELDS) int64 with NB_ID = -1,
+    nb_dist (N, NB_SLOTS) float64.
+    """
+    ri = np.zeros((n_robots, R_FIELDS), dtype=np.int64)
+    ri[:, R_STATE] = State.QUEUED
+    ri[:, R_QMIN] = np.arange(n_robots)
+    ri[:, R_FLOOR] = -1
+    ri[:, R_YIELD_SINCE] = -1
+    ri[:, R_BELOW_SINCE] = -1
+    ri[:, R_REF_ID] = -1
+    ri[:, R_YLD_ID] = -1
+    nb = np.zeros((n_robots, NB_SLOTS, NB_FIELDS), dtype=np.int64)
+    nb[:, :, NB_ID] = -1
+    nb[:, :, NB_PREV] = -1
+    nb_dist = np.zeros((n_robots, NB_SLOTS), dtype=np.float64)
+    return ri, nb, nb_dist

@@ -1,0 +1,57 @@
+"""Layout of the ET status message (9-byte Kilobot payload, message type 1).
+
+Every robot running ET re-broadcasts one status message every ``tx_period`` ticks. Bytes
+(little-endian, ``uint8`` each):
+
+=====  ==========================  ==============================================
+byte   placed robot (Inactive ..   Queued / Search robot
+       Leader)
+=====  ==========================  ==============================================
+0-1    robot ID (uint16)           robot ID (uint16)
+2      state code (see states)     state code
+3      tag X (int8)                lowest Queued ID heard, low byte
+4      tag Y (int8)                lowest Queued ID heard, high byte
+5-6    timestep TS (uint16)        release floor + 1 (uint16; 0 = none released)
+7      placed-neighbour count      robots released so far, low byte
+8      target epoch (uint8)        robots released so far, high byte
+=====  ==========================  ==============================================
+
+The *release floor* is the ID of the last robot released from the repository: all
+Queued robots with an ID at or below it have left. ``messages`` holds only constants and
+numba helpers so the controller can encode and decode without allocation.
+"""
+
+from __future__ import annotations
+
+from numba import njit
+
+#: kilolib message type used for ET status broadcasts.
+MSG_STATUS = 1
+
+PAYLOAD_BYTES = 9
+
+
+@njit(cache=True, inline="always")
+def put_u16(buf, offset, value):  # type: ignore[no-untyped-def]
+    """Write ``value`` (0..65535) little-endian at ``buf[offset:offset+2]``."""
+    buf[offset] = value & 0xFF
+    buf[offset + 1] = (value >> 8) & 0xFF
+
+
+@njit(cache=True, inline="always")
+def get_u16(buf, offset):  # type: ignore[no-untyped-def]
+    """Read a little-endian uint16 from ``buf[offset:offset+2]``."""
+    return int(buf[offset]) | (int(buf[offset + 1]) << 8)
+
+
+@njit(cache=True, inline="always")
+def put_i8(buf, offset, value):  # type: ignore[no-untyped-def]
+    """Write a signed byte (-128..127) at ``buf[offset]`` (two's complement)."""
+    buf[offset] = value & 0xFF
+
+
+@njit(cache=True, inline="always")
+def get_i8(buf, offset):  # type: ignore[no-untyped-def]
+    """Read a signed byte from ``buf[offset]``."""
+    v = int(buf[offset])
+    return v - 256 if v >= 128 else v

@@ -1,0 +1,109 @@
+"""Parameters of the ET controller, in user units, and their packing for numba.
+
+All times are simulated seconds (converted to ticks at 31 ticks/s); all lengths are mm.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, fields
+
+import numpy as np
+
+from etswarm.errors import EtswarmError
+
+# Column indices of the packed integer constants (``ci``) and float constants (``cf``).
+C_TICKS_NB_FRESH = 0  # a neighbour counts if heard within this many ticks
+C_TICKS_DANGER = 1  # Stable -> Danger after the count stays below NN this long
+C_TICKS_QUASI = 2  # Quasi back-off time
+C_TICKS_RELEASE = 3  # minimum interval between two releases from the repository
+C_TICKS_QUIET = 4  # a Queued robot must be the lowest ID this long before leaving
+C_TICKS_SETTLE = 5  # a searching robot stands still this long before taking a site
+C_TICKS_COOLDOWN = 6  # after a rejected site, ignore candidates this long
+C_TICKS_YIELD_MAX = 7  # give up yielding to another searcher after this long
+C_TICKS_MOVE_FRESH = 8  # distance readings used for steering must be this recent
+C_RELEASE_LIMIT = 9  # robots the repository releases (cells of the target - 3 seeds)
+C_GENE_X0 = 10  # tag X of gene grid column 0
+C_GENE_Y0 = 11  # tag Y of gene grid row 0
+C_EVAL_EVERY = 12  # placed robots re-evaluate their state every this many ticks
+N_CI = 13
+
+F_SPACING = 0  # lattice spacing d
+F_NB_RADIUS = 1  # a placed robot nearer than this is a lattice neighbour
+F_PAIR_TOL = 2  # two references within this of d trigger a site candidate
+F_CONSIST_TOL = 3  # every heard placed robot must match the candidate within this
+F_FOLLOW_BAND = 4  # edge-following keeps the nearest distance within d +- this
+F_YIELD_DIST = 5  # yield to a lower-ID searcher nearer than this
+F_FOLLOW_OFFSET = 6  # edge-following aims at d + this (clearance for the bodies)
+F_CLOSING = 7  # assumed worst-case closing speed between readings, mm per tick
+F_CLEARANCE = 8  # a searcher turns away from any other robot nearer than this
+N_CF = 9
+
+
+@dataclass(frozen=True)
+class ETParams:
+    """Tunable constants of the ET controller (defaults suit DESIGN §2 robots)."""
+
+    spacing_mm: float = 40.0
+    neighbour_radius_factor: float = 1.3
+    neighbour_timeout_s: float = 2.5
+    danger_timeout_s: float = 8.0
+    quasi_s: float = 4.0
+    release_interval_s: float = 30.0
+    release_quiet_s: float = 4.0
+    settle_s: float = 1.5
+    rejected_cooldown_s: float = 3.0
+    yield_max_s: float = 30.0
+    steer_fresh_s: float = 3.0
+    pair_tol_mm: float = 6.0
+    consistency_tol_mm: float = 12.0
+    follow_band_mm: float = 3.0
+    follow_offset_mm: float = 2.0
+    closing_speed_mm_s: float = 5.0
+    clearance_mm: float = 38.0
+    yield_distance_mm: float = 60.0
+    eval_every_ticks: int = 4
+
+    def __post_init__(self) -> None:
+        for f in fields(self):
+            value = getattr(self, f.name)
+            if not value > 0:
+                raise EtswarmError(f"ET parameter {f.name} must be > 0, got {value}")
+        if self.spacing_mm * self.neighbour_radius_factor >= self.spacing_mm * 3**0.5:
+            raise EtswarmError(
+                "ET parameter neighbour_radius_factor must be below sqrt(3) so the second "
+                "lattice ring is not counted as neighbours"
+            )
+
+    def pack(
+        self, ticks_per_s: int, release_limit: int, gene_x0: int, gene_y0: int
+    ) -> tuple[np.ndarray, np.ndarray]:
+        """Return ``(ci, cf)``: int64 (N_CI,) and float64 (N_CF,) arrays for the kernel."""
+
+        def ticks(seconds: float) -> int:
+            return max(1, round(seconds * ticks_per_s))
+
+        ci = np.zeros(N_CI, dtype=np.int64)
+        ci[C_TICKS_NB_FRESH] = ticks(self.neighbour_timeout_s)
+        ci[C_TICKS_DANGER] = ticks(self.danger_timeout_s)
+        ci[C_TICKS_QUASI] = ticks(self.quasi_s)
+        ci[C_TICKS_RELEASE] = ticks(self.release_interval_s)
+        ci[C_TICKS_QUIET] = ticks(self.release_quiet_s)
+        ci[C_TICKS_SETTLE] = ticks(self.settle_s)
+        ci[C_TICKS_COOLDOWN] = ticks(self.rejected_cooldown_s)
+        ci[C_TICKS_YIELD_MAX] = ticks(self.yield_max_s)
+        ci[C_TICKS_MOVE_FRESH] = ticks(self.steer_fresh_s)
+        ci[C_RELEASE_LIMIT] = release_limit
+        ci[C_GENE_X0] = gene_x0
+        ci[C_GENE_Y0] = gene_y0
+        ci[C_EVAL_EVERY] = self.eval_every_ticks
+        cf = np.zeros(N_CF, dtype=np.float64)
+        cf[F_SPACING] = self.spacing_mm
+        cf[F_NB_RADIUS] = self.spacing_mm * self.neighbour_radius_factor
+        cf[F_PAIR_TOL] = self.pair_tol_mm
+        cf[F_CONSIST_TOL] = self.consistency_tol_mm
+        cf[F_FOLLOW_BAND] = self.follow_band_mm
+        cf[F_YIELD_DIST] = self.yield_distance_mm
+        cf[F_FOLLOW_OFFSET] = self.follow_offset_mm
+        cf[F_CLOSING] = self.closing_speed_mm_s / ticks_per_s
+        cf[F_CLEARANCE] = self.clearance_mm
+        return ci, cf

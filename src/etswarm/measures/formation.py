@@ -1,0 +1,93 @@
+"""Measures of a formation (DESIGN §5), computed from the whole world (not by robots).
+
+Inputs are plain arrays so the measures serve the runner, the experiments and the tests:
+``tags`` (N, 2) int tags robots believe they hold, ``holds`` (N,) bool (robot holds a tag),
+``stable`` (N,) bool, ``pos`` (N, 2) mm, and the target's cells (P, 2).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from scipy.sparse import coo_matrix
+from scipy.sparse.csgraph import connected_components
+from scipy.spatial import cKDTree
+
+from etswarm.shapes.lattice import tags_to_xy
+
+
+def _tag_set(tags: np.ndarray) -> set[tuple[int, int]]:
+    return {(int(x), int(y)) for x, y in np.asarray(tags).reshape(-1, 2)}
+
+
+def duplicate_tags(tags: np.ndarray, holds: np.ndarray) -> list[tuple[int, int]]:
+    """Tags held by two or more robots (each listed once, sorted)."""
+    held = np.asarray(tags)[np.asarray(holds, dtype=bool)]
+    if len(held) == 0:
+        return []
+    uniq, counts = np.unique(held, axis=0, return_counts=True)
+    return [(int(x), int(y)) for x, y in uniq[counts > 1]]
+
+
+def is_formed(tags: np.ndarray, holds: np.ndarray, stable: np.ndarray, target: np.ndarray) -> bool:
+    """Every target cell is held by a Stable robot and no tag is held twice."""
+    if duplicate_tags(tags, holds):
+        return False
+    stable_tags = _tag_set(np.asarray(tags)[np.asarray(stable, dtype=bool)])
+    return _tag_set(target) <= stable_tags
+
+
+def jaccard(tags: np.ndarray, holds: np.ndarray, target: np.ndarray) -> float:
+    """|held ∩ target| / |held ∪ target| over tags (1.0 when both are empty)."""
+    held = _tag_set(np.asarray(tags)[np.asarray(holds, dtype=bool)])
+    want = _tag_set(target)
+    union = held | want
+    return 1.0 if not union else len(held & want) / len(union)
+
+
+def placement_error_mm(
+    pos: np.ndarray, tags: np.ndarray, holds: np.ndarray, spacing_mm: float
+) -> float | None:
+    """RMS distance (mm) of placed robots from their ideal sites after the best rigid fit.
+
+    The fit (rotation + translation, Kabsch) maps ideal site positions onto the robots'
+    positions. None when fewer than two robots hold tags.
+    """
+    mask = np.asarray(holds, dtype=bool)
+    if mask.sum() < 2:
+        return None
+    p = np.asarray(pos, dtype=np.float64)[mask]
+    q = tags_to_xy(np.asarray(tags)[mask], spacing_mm)
+    pc = p - p.mean(axis=0)
+    qc = q - q.mean(axis=0)
+    u, _, vt = np.linalg.svd(qc.T @ pc)
+    sign = np.sign(np.linalg.det(u @ vt)) or 1.0
+    rot = u @ np.diag([1.0, sign]) @ vt
+    resid = qc @ rot - pc
+    return float(np.sqrt(np.mean(np.sum(resid**2, axis=1))))
+
+
+def components(pos: np.ndarray, members: np.ndarray, radius_mm: float) -> list[np.ndarray]:
+    """Connected groups of ``members`` robots (links between centres <= radius_mm).
+
+    Returns a list of int64 ID arrays, largest group first (ties: lowest ID first).
+    """
+    ids = np.flatnonzero(np.asarray(members, dtype=bool))
+    if len(ids) == 0:
+        return []
+    tree = cKDTree(np.asarray(pos)[ids])
+    pairs = tree.query_pairs(radius_mm, output_type="ndarray")
+    m = len(ids)
+    graph = coo_matrix((np.ones(len(pairs)), (pairs[:, 0], pairs[:, 1])), shape=(m, m))
+    _, labels = connected_components(graph, directed=False)
+    groups = [ids[labels == lab] for lab in np.unique(labels)]
+    groups.sort(key=lambda g: (-len(g), int(g[0])))
+    return groups
+
+
+def min_pair_distance(pos: np.ndarray, members: np.ndarray) -> float:
+    """Smallest centre distance between two ``members`` robots (inf for fewer than two)."""
+    p = np.asarray(pos)[np.asarray(members, dtype=bool)]
+    if len(p) < 2:
+        return float("inf")
+    dist, _ = cKDTree(p).query(p, k=2)
+    return float(dist[:, 1].min())
