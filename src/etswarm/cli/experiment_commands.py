@@ -102,3 +102,63 @@ def report(results: Path, out_dir: Path | None) -> None:
     written = write_report(results, out_dir)
     click.echo(written.markdown_path.read_text(encoding="utf-8"))
     click.echo(f"report written to {written.markdown_path}", err=True)
+
+
+@click.command()
+@click.option(
+    "--out",
+    "out_dir",
+    type=click.Path(file_okay=False, path_type=Path),
+    default=Path("paper"),
+    show_default=True,
+    help="Output folder: sweep, figures and report.md.",
+)
+@click.option(
+    "--seeds", type=click.IntRange(min=1), default=20, show_default=True,
+    help="Seeds of T at loss 0.2 (the comparison table).",
+)
+@click.option(
+    "--shape-seeds", type=click.IntRange(min=1), default=None,
+    help="Seeds of the dumbbell, starfish and cut T (default: seeds / 4).",
+)
+@click.option(
+    "--max-time", "max_time_s", type=click.FloatRange(min=1.0), default=4 * 3600.0,
+    show_default=True, help="Simulated seconds a run may take.",
+)
+@click.option("--workers", type=int, default=None, help="Local worker processes (default: all).")
+@click.option("--scheduler", default=None, metavar="ADDRESS", help="Existing Dask scheduler.")
+@click.option("--no-progress", is_flag=True, help="No progress display.")
+def reproduce(
+    out_dir: Path,
+    seeds: int,
+    shape_seeds: int | None,
+    max_time_s: float,
+    workers: int | None,
+    scheduler: str | None,
+    no_progress: bool,
+) -> None:
+    """Re-run the paper's experiments (Figs. 5, 6, 8, 9, 10 and its T time) and report.
+
+    Runs are one sweep in OUT/sweep, so an interrupted reproduction resumes when run again.
+    """
+    from etswarm.experiments.reproduce import reproduce as run_reproduction
+
+    done = run_reproduction(
+        out_dir,
+        seeds=seeds,
+        shape_seeds=shape_seeds,
+        max_time_s=max_time_s,
+        workers=workers,
+        scheduler=scheduler,
+        show_progress=not no_progress,
+    )
+    outcome = done.sweep
+    if outcome.interrupted or done.report is None:
+        click.echo(
+            f"etswarm: interrupted: {outcome.kept} of {outcome.total} runs are kept in"
+            f" {outcome.out_dir / 'runs'}. Run the same command again to resume.",
+            err=True,
+        )
+        sys.exit(130)
+    click.echo(done.report.read_text(encoding="utf-8"))
+    click.echo(f"report written to {done.report}", err=True)
