@@ -63,8 +63,9 @@ class SweepProgress:
                     "[green]done {task.fields[done]}[/] · [red]failed {task.fields[failed]}[/]"
                     " · remaining {task.fields[remaining]}"
                 ),
+                TextColumn("· elapsed"),
                 TimeElapsedColumn(),
-                TextColumn("left"),
+                TextColumn("· left"),
                 TimeRemainingColumn(),
                 console=self.console,
                 transient=False,

@@ -288,7 +288,8 @@ def summary_table(frame: pd.DataFrame, swept: Sequence[str]) -> pd.DataFrame:
             ("census_error_mean", "median census error", lambda v: f"{v:+.1f}"),
             ("wall_time_s", "median wall time", format_duration),
         ):
-            if column in ok.columns and np.isfinite(numbers(frame[column])).any():
+            always = column == "formation_time_s"  # "-" says no run formed
+            if column in ok.columns and (always or np.isfinite(numbers(frame[column])).any()):
                 values = numbers(ok[column])
                 values = values[np.isfinite(values)]
                 row[title] = fmt(float(np.median(values))) if values.size else "-"
