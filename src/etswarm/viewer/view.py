@@ -22,7 +22,7 @@ class Trails:
     going backwards or a change in robot count clears the history.
     """
 
-    def __init__(self, length: int = 60, min_dt_s: float = 0.0) -> None:
+    def __init__(self, length: int = 40, min_dt_s: float = 0.0) -> None:
         if length < 2:
             raise ValueError(f"trail length must be >= 2, got {length}")
         self.length = int(length)
