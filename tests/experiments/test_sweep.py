@@ -173,3 +173,17 @@ def test_cli_reports_spec_errors_in_one_line(
     assert info.value.code == 2
     err = capsys.readouterr().err
     assert err.strip() == f"etswarm: error: {path}: grid.robots: empty list"
+
+
+def test_dry_run_counts_runs_without_running(
+    tmp_path: Path,
+    capsys: pytest.CaptureFixture[str],
+    make_spec: Callable[..., tuple[Path, Path]],
+) -> None:
+    spec_path, log = make_spec(tmp_path)
+    cli_main(["sweep", str(spec_path), "--out", str(tmp_path / "out"), "--dry-run"])
+    out = capsys.readouterr().out
+    expected = f"sweep small: 4 points, 12 runs; 0 kept in {tmp_path / 'out'}, 12 to run"
+    assert out.startswith(expected)
+    assert "... and 7 more" in out
+    assert not log.exists()

@@ -31,6 +31,7 @@ import click
 )
 @click.option("--retry-failed", is_flag=True, help="Run again the runs recorded as failed.")
 @click.option("--no-progress", is_flag=True, help="No progress display.")
+@click.option("--dry-run", is_flag=True, help="Only say how many runs there are and are left.")
 def sweep(
     spec_file: Path,
     out_dir: Path | None,
@@ -38,6 +39,7 @@ def sweep(
     workers: int | None,
     retry_failed: bool,
     no_progress: bool,
+    dry_run: bool,
 ) -> None:
     """Run every grid point x seed of SPEC.toml on Dask; results go to OUT.
 
@@ -45,12 +47,25 @@ def sweep(
     loses nothing: run the same command again and it resumes. OUT/results.parquet holds
     one row per run.
     """
-    from etswarm.experiments.runner import run_sweep
-    from etswarm.experiments.spec import load_spec
+    from etswarm.experiments.runner import check_task, plan_runs, run_sweep
+    from etswarm.experiments.spec import canonical_json, load_spec
+    from etswarm.experiments.store import RunStore
 
     spec = load_spec(spec_file)
     if out_dir is None:
         out_dir = spec_file.parent / "sweeps" / spec.name
+    if dry_run:
+        check_task(spec)
+        todo, skipped = plan_runs(spec, RunStore(out_dir), retry_failed)
+        click.echo(
+            f"sweep {spec.name}: {len(spec.points)} points, {len(spec.runs())} runs;"
+            f" {skipped} kept in {out_dir}, {len(todo)} to run; task {spec.task}"
+        )
+        for run in todo[:5]:
+            click.echo(f"  {run.run_id}  {canonical_json(run.params)}")
+        if len(todo) > 5:
+            click.echo(f"  ... and {len(todo) - 5} more")
+        return
     outcome = run_sweep(
         spec,
         out_dir,
