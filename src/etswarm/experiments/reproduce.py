@@ -179,7 +179,7 @@ def reproduce(
 
     ``seeds`` runs of `T` (the comparison table), ``shape_seeds`` (default seeds // 4, at
     least 1) of the dumbbell, the starfish and the cut `T`. No report is written when the
-    sweep was interrupted.
+    sweep was interrupted. Runs recorded as failed are run again.
     """
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
@@ -199,6 +199,7 @@ def reproduce(
         out / "sweep",
         scheduler=scheduler,
         workers=workers,
+        retry_failed=True,  # a crash is worth another try when the reproduction is re-run
         show_progress=show_progress,
     )
     if outcome.interrupted:
