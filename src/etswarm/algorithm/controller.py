@@ -42,7 +42,6 @@ from etswarm.algorithm.memory import (
     R_QMIN_SINCE,
     R_QUASI_UNTIL,
     R_REF_ID,
-    R_REF_TREND,
     R_RELEASED,
     R_SINCE,
     R_STATE,
@@ -289,15 +288,31 @@ def queued_rule(i, tick, ri, nb, ci):  # type: ignore[no-untyped-def]
 
 
 @njit(cache=True)
+def site_taken(i, x, y, nb):  # type: ignore[no-untyped-def]
+    """True when robot i's table holds a placed robot with tag (x, y) (they stay put)."""
+    for j in range(nb.shape[1]):
+        if (
+            nb[i, j, NB_ID] >= 0
+            and is_placed(nb[i, j, NB_STATE])
+            and nb[i, j, NB_TX] == x
+            and nb[i, j, NB_TY] == y
+        ):
+            return True
+    return False
+
+
+@njit(cache=True)
 def find_site(i, tick, since, strict, nb, nb_dist, gene_flag, ci, cf):  # type: ignore[no-untyped-def]
     """Localise robot i from its placed neighbours (paper Sec. 4.1).
 
-    Two placed robots heard at about d whose tags are adjacent give two candidate sites
-    (their common lattice neighbours). A candidate is kept when its gene flag is 1, no
-    robot in the table holds it (placed robots do not move), every placed robot heard
-    since ``since`` is at the distance the lattice predicts and, when ``strict``, every
-    known robot of a neighbouring site was heard since ``since``; and an Active robot is
-    adjacent to it.
+    Two placed robots heard at about d whose tags are adjacent put the robot at one of
+    their two common lattice neighbours, ``c`` or its mirror ``c2``. The robot takes ``c``
+    only with evidence that it is not at ``c2``: ``c2`` is held by a robot it knows of, or
+    a third placed robot heard since ``since`` is at the distance ``c`` predicts and not
+    at the one ``c2`` predicts. ``c`` must also have gene flag 1, be held by no robot it
+    knows of, agree with every placed robot heard since ``since`` and, when ``strict``,
+    every known robot of a neighbouring site must have been heard since ``since``; and
+    an Active robot must be adjacent to it (the least TS among them is returned).
 
     Returns ``(found, x, y, min_active_ts)``; the best-fitting candidate wins.
     """
@@ -327,10 +342,14 @@ def find_site(i, tick, since, strict, nb, nb_dist, gene_flag, ci, cf):  # type: 
                 continue
             for side in range(2):
                 kk = (k + 5) % 6 if side == 0 else (k + 1) % 6
+                k2 = (k + 1) % 6 if side == 0 else (k + 5) % 6
                 cx = ax + DIR_X[kk]
                 cy = ay + DIR_Y[kk]
-                if gene_flag_at(gene_flag, ci, cx, cy) != 1:
+                c2x = ax + DIR_X[k2]
+                c2y = ay + DIR_Y[k2]
+                if gene_flag_at(gene_flag, ci, cx, cy) != 1 or site_taken(i, cx, cy, nb):
                     continue
+                ruled_out_mirror = site_taken(i, c2x, c2y, nb)
                 ok = True
                 err = 0.0
                 min_ts = -1
@@ -339,10 +358,6 @@ def find_site(i, tick, since, strict, nb, nb_dist, gene_flag, ci, cf):  # type: 
                         continue
                     jx = nb[i, j, NB_TX]
                     jy = nb[i, j, NB_TY]
-                    if jx == cx and jy == cy:
-                        # Placed robots stay put: a tag once heard stays taken.
-                        ok = False
-                        break
                     pred = lattice_distance(cx, cy, jx, jy) * d
                     if nb[i, j, NB_LAST] >= since:
                         e = abs(nb_dist[i, j] - pred)
@@ -350,6 +365,9 @@ def find_site(i, tick, since, strict, nb, nb_dist, gene_flag, ci, cf):  # type: 
                             ok = False
                             break
                         err += e
+                        pred2 = lattice_distance(c2x, c2y, jx, jy) * d
+                        if abs(nb_dist[i, j] - pred2) > consist_tol:
+                            ruled_out_mirror = True
                     elif strict and pred < 1.2 * d:
                         # A lattice neighbour of the site must have been heard by now.
                         ok = False
@@ -360,7 +378,7 @@ def find_site(i, tick, since, strict, nb, nb_dist, gene_flag, ci, cf):  # type: 
                         ts = nb[i, j, NB_TS]
                         if min_ts < 0 or ts < min_ts:
                             min_ts = ts
-                if ok and min_ts >= 0 and err < best_err:
+                if ok and ruled_out_mirror and min_ts >= 0 and err < best_err:
                     best_err = err
                     best_x = cx
                     best_y = cy
@@ -403,17 +421,22 @@ def search_rule(i, tick, new_msgs, ri, nb, nb_dist, motor, gene_flag, gene_nn, c
             queued_est = est
             queued_slot = m
     lost = False
-    if placed_slot >= 0 and placed_est <= queued_est:
+    reading = FAR
+    if placed_slot >= 0:
+        reading = nb_dist[i, placed_slot]
         nearest = placed_est
+        obstacle = min(queued_est, nearest_searcher)
         track_trend(i, ri, nb, nb_dist, placed_slot, R_REF_ID)
     elif queued_slot >= 0:
+        reading = nb_dist[i, queued_slot]
         nearest = queued_est
+        obstacle = nearest_searcher
         track_trend(i, ri, nb, nb_dist, queued_slot, R_REF_ID)
     else:
         # Nothing stationary in earshot: circle clockwise to find the group again.
         lost = True
         nearest = FAR
-    obstacle = nearest_searcher
+        obstacle = nearest_searcher
 
     if ri[i, R_SUB] == SUB_SETTLE:
         motor[i] = STOP
@@ -462,19 +485,20 @@ def search_rule(i, tick, new_msgs, ri, nb, nb_dist, motor, gene_flag, gene_nn, c
             ri[i, R_CAND_Y] = cy
             return
 
-    band = cf[F_FOLLOW_BAND]
+    cf[F_FOLLOW_BAND]
     aim = d + cf[F_FOLLOW_OFFSET]
-    # Kilobot orbit: pivot away when nearer than the aim, towards the group otherwise.
-    if obstacle < cf[F_CLEARANCE]:
+    # Kilobot orbit (both pivots also move the body forward): pivot away from the group
+    # when the last reading of the reference is nearer than the aim, towards it otherwise.
+    # Any robot that may have come nearer than the clearance is turned away from.
+    clearance = cf[F_CLEARANCE]
+    if obstacle < clearance or nearest < clearance:
         motor[i] = LEFT
     elif lost:
         motor[i] = RIGHT
-    elif nearest < aim:
+    elif reading < aim:
         motor[i] = LEFT
-    elif nearest > aim + band:
-        motor[i] = RIGHT
     else:
-        motor[i] = FORWARD if ri[i, R_REF_TREND] < 0 else RIGHT
+        motor[i] = RIGHT
 
 
 @njit(cache=True)

@@ -44,7 +44,7 @@ class ETParams:
     """Tunable constants of the ET controller (defaults suit DESIGN §2 robots)."""
 
     spacing_mm: float = 40.0
-    neighbour_radius_factor: float = 1.3
+    neighbour_radius_factor: float = 1.55
     neighbour_timeout_s: float = 2.5
     danger_timeout_s: float = 8.0
     quasi_s: float = 4.0

@@ -1,0 +1,131 @@
+"""The ET run as the viewer's ``LiveRun``: scenes, robot details and mouse damage."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from etswarm.algorithm.memory import (
+    NB_ID,
+    NB_LAST,
+    NB_STATE,
+    NB_TS,
+    NB_TX,
+    NB_TY,
+    R_COUNT,
+    R_NN,
+    R_TS,
+)
+from etswarm.algorithm.run import ETRun
+from etswarm.algorithm.states import PLACED_STATES, STATE_NAMES
+from etswarm.shapes.lattice import tags_to_xy
+from etswarm.viewer.scene import Scene
+
+Point = tuple[float, float]
+
+#: How far a split moves the cut-off side, mm (well beyond the 70 mm radio range).
+SPLIT_SHIFT_MM = 400.0
+
+
+class ETLive:
+    """Adapter of :class:`ETRun` to :class:`etswarm.viewer.live.LiveRun`."""
+
+    def __init__(self, run: ETRun, title: str = "") -> None:
+        self.run = run
+        self.title = title or f"ET {run.config.shape}, seed {run.config.seed}"
+        self.ticks_per_second = run.ticks_per_s
+        self._max_ticks = round(run.config.max_time_s * run.ticks_per_s)
+        self._events: list[str] = []
+
+    @property
+    def finished(self) -> bool:
+        return self.run.world.tick >= self._max_ticks
+
+    def advance(self, ticks: int) -> None:
+        ticks = min(ticks, self._max_ticks - self.run.world.tick)
+        if ticks > 0:
+            before = len(self.run.events)
+            self.run.advance(ticks)
+            for ev in self.run.events[before:]:
+                self._events.append(f"{ev['t_s'] / 60:.1f} min: {ev['kind']}")
+
+    def scene(self) -> Scene:
+        r = self.run
+        states = r.controller.states.astype(np.uint8)
+        has_tag = np.isin(states, [int(s) for s in PLACED_STATES])
+        return Scene(
+            pos=r.world.pos.copy(),
+            heading=r.world.heading.copy(),
+            present=r.world.present.copy(),
+            alive=r.world.alive.copy(),
+            state=states,
+            tag=r.controller.tags.copy(),
+            has_tag=has_tag,
+            ts=np.where(has_tag, r.controller.ri[:, R_TS], 0),
+            target_sites=tags_to_xy(r.target, r.config.et.spacing_mm),
+            comm_range_mm=r.sim_params.comm_range_mm,
+            body_radius_mm=r.sim_params.body_radius_mm,
+            sim_time_s=r.sim_time_s,
+            events=list(self._events[-4:]),
+            title=self.title,
+        )
+
+    def robot_info(self, i: int) -> dict[str, object]:
+        r = self.run
+        ri = r.controller.ri
+        state = int(r.controller.states[i])
+        tick = r.world.tick
+        table = []
+        for m in range(r.controller.nb.shape[1]):
+            row = r.controller.nb[i, m]
+            if row[NB_ID] < 0:
+                continue
+            st = int(row[NB_STATE])
+            table.append(
+                {
+                    "id": int(row[NB_ID]),
+                    "state": STATE_NAMES[st],
+                    "tag": f"({row[NB_TX]},{row[NB_TY]})" if st >= 2 else "-",
+                    "TS": int(row[NB_TS]) if st >= 2 else "-",
+                    "dist": f"{r.controller.nb_dist[i, m]:.0f}",
+                    "age_s": f"{(tick - row[NB_LAST]) / r.ticks_per_s:.1f}",
+                }
+            )
+        placed = state >= 2
+        return {
+            "ID": i,
+            "state": STATE_NAMES[state],
+            "tag": tuple(int(v) for v in r.controller.tags[i]) if placed else "-",
+            "NN": int(ri[i, R_NN]) if placed else "-",
+            "count": int(ri[i, R_COUNT]) if placed else "-",
+            "TS": int(ri[i, R_TS]) if placed else "-",
+            "neighbours": table,
+        }
+
+    def damage_split(self, p0: Point, p1: Point) -> None:
+        """Move every robot on the left of p0 -> p1 away along the line's normal."""
+        w = self.run.world
+        a = np.asarray(p0, dtype=float)
+        b = np.asarray(p1, dtype=float)
+        direction = b - a
+        length = float(np.hypot(*direction))
+        if length < 1e-9:
+            return
+        normal = np.array([-direction[1], direction[0]]) / length
+        side = (w.pos - a) @ normal > 0
+        w.pos[side] += SPLIT_SHIFT_MM * normal
+        self._events.append(f"{self.run.sim_time_s / 60:.1f} min: split ({int(side.sum())})")
+
+    def damage_remove_rect(self, p0: Point, p1: Point) -> None:
+        w = self.run.world
+        lo = np.minimum(p0, p1)
+        hi = np.maximum(p0, p1)
+        inside = np.all((w.pos >= lo) & (w.pos <= hi), axis=1) & w.present
+        ids = np.flatnonzero(inside)
+        if len(ids):
+            w.remove(ids)
+        self._events.append(f"{self.run.sim_time_s / 60:.1f} min: removed {len(ids)}")
+
+    def damage_kill(self, ids: list[int]) -> None:
+        if ids:
+            self.run.world.kill(np.asarray(ids, dtype=np.int64))
+        self._events.append(f"{self.run.sim_time_s / 60:.1f} min: killed {len(ids)}")
