@@ -66,3 +66,8 @@ def strict(params: dict[str, Any]) -> dict[str, Any]:
 
 
 strict.parameters = frozenset({"robots", "loss", "shape", "log", "sleep_s", "crash_robots"})  # type: ignore[attr-defined]
+
+
+def exits(params: dict[str, Any]) -> dict[str, Any]:
+    """A task that calls sys.exit: must be recorded as a failed run, not end the worker."""
+    raise SystemExit(f"bye from seed {params['seed']}")

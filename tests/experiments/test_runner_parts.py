@@ -9,6 +9,7 @@ from types import SimpleNamespace
 from typing import Any
 
 from distributed import KilledWorker
+from distributed.client import FutureCancelledError
 from rich.console import Console
 
 from etswarm.experiments.progress import SweepProgress
@@ -42,6 +43,8 @@ def test_a_lost_worker_is_an_error_record_and_a_cancelled_future_is_no_record() 
     assert record["error"].startswith("KilledWorker: ") and "\n" not in record["error"]
     assert "KilledWorker" in record["traceback"]
     assert _collect(StubFuture("cancelled"), run, "m:f") is None
+    lost = StubFuture("error", error=FutureCancelledError("etswarm-run-abc", "cancelled"))
+    assert _collect(lost, run, "m:f") is None
     assert _collect(StubFuture("finished", result={"run_id": "abc"}), run, "m:f") == {
         "run_id": "abc"
     }

@@ -57,6 +57,8 @@ def test_execute_run_records_summary_and_crash() -> None:
     assert bad["status"] == "error" and bad["summary"] is None
     assert bad["error"] == "ValueError: fake task crashed on robots=13"
     assert "Traceback" in bad["traceback"] and "fake_task.py" in bad["traceback"]
+    bye = execute_run("fake_task:exits", {"seed": 4}, "a4")
+    assert bye["status"] == "error" and bye["error"] == "SystemExit: bye from seed 4"
     missing = execute_run("no_such_module_xyz:run", {"seed": 0}, "a3")
     assert missing["status"] == "error" and "no_such_module_xyz" in missing["error"]
     json.dumps([ok, bad, missing])

@@ -11,6 +11,7 @@ says so.
 
 from __future__ import annotations
 
+import concurrent.futures
 import contextlib
 import logging
 import os
@@ -237,6 +238,8 @@ def _collect(future: Any, run: Run, task: str) -> dict[str, Any] | None:
         return None
     try:
         record = future.result()
+    except concurrent.futures.CancelledError:
+        return None
     except Exception as err:  # the worker died or the future was lost: still a result
         return error_record(task, run.params, run.run_id, err, traceback.format_exc())
     return record

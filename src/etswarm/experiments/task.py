@@ -77,7 +77,7 @@ def execute_run(
         if not isinstance(result, dict):
             raise TypeError(f"task returned {type(result).__name__}, expected a dict")
         summary = json.loads(json.dumps(_jsonable(result), allow_nan=False))
-    except Exception as err:
+    except (Exception, SystemExit) as err:  # a task calling sys.exit is a failed run too
         error = one_line(err)
         trace = traceback.format_exc()
     wall = time.perf_counter() - start
