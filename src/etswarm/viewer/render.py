@@ -30,6 +30,7 @@ HEADING_BINS = 36
 _SUPERSAMPLE = 4
 _DEAD_KEY = 256  # colour-table index of killed robots
 
+
 def _rgb(row: np.ndarray) -> tuple[int, int, int]:
     return (int(row[0]), int(row[1]), int(row[2]))
 
