@@ -94,7 +94,18 @@ def test_view_command_writes_a_video_headless(tmp_path) -> None:
     out = tmp_path / "v.mp4"
     result = CliRunner().invoke(
         view_command,
-        ["--robots", "20", "--video", str(out), "--frames", "4", "--size", "320x240"],
+        [
+            "--controller",
+            "randomwalk",
+            "--robots",
+            "20",
+            "--video",
+            str(out),
+            "--frames",
+            "4",
+            "--size",
+            "320x240",
+        ],
     )
     assert result.exit_code == 0, result.output
     assert iio.imread(out, index=None).shape == (4, 240, 320, 3)
@@ -104,6 +115,8 @@ def test_view_command_runs_the_window_for_some_frames(tmp_path) -> None:
     result = CliRunner().invoke(
         view_command,
         [
+            "--controller",
+            "randomwalk",
             "--robots",
             "20",
             "--frames",
@@ -117,3 +130,24 @@ def test_view_command_runs_the_window_for_some_frames(tmp_path) -> None:
         ],
     )
     assert result.exit_code == 0, result.output
+
+
+def test_view_command_shows_the_et_run(tmp_path) -> None:
+    out = tmp_path / "t.gif"
+    result = CliRunner().invoke(
+        view_command,
+        ["T", "--video", str(out), "--frames", "3", "--size", "320x240", "--speed", "60"],
+    )
+    assert result.exit_code == 0, result.output
+    frames = iio.imread(out, index=None)
+    assert frames.shape[:3] == (3, 240, 320)
+
+
+def test_view_command_argument_errors() -> None:
+    runner = CliRunner()
+    result = runner.invoke(view_command, ["--controller", "randomwalk", "T", "--frames", "1"])
+    assert "takes no SHAPE" in str(result.exception)
+    result = runner.invoke(view_command, ["--frames", "1"])
+    assert "missing SHAPE" in str(result.exception)
+    result = runner.invoke(view_command, ["T", "--size", "big", "--frames", "1"])
+    assert "--size" in str(result.exception)

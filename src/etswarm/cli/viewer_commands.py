@@ -53,20 +53,45 @@ def window_options(func):  # type: ignore[no-untyped-def]
     return func
 
 
+#: Default target speed (x real time) per controller: ET runs take simulated hours.
+DEFAULT_SPEED = {"et": 60.0, "randomwalk": 10.0}
+
+
 @click.command()
+@click.argument("shape", required=False)
 @click.option(
     "--controller",
-    type=click.Choice(["randomwalk"]),
-    default="randomwalk",
+    type=click.Choice(["et", "randomwalk"]),
+    default="et",
     show_default=True,
-    help="Robot program to watch.",
+    help="Robot program: the ET algorithm growing SHAPE, or a random walk (no SHAPE).",
 )
-@click.option("--robots", type=int, default=200, show_default=True, help="Number of robots.")
-@click.option("--seed", type=int, default=0, show_default=True)
 @click.option(
-    "--speed", type=float, default=10.0, show_default=True, help="Target x real time (+/- keys)."
+    "--robots",
+    type=int,
+    default=None,
+    help="Swarm size (ET: default the cells of the shape; random walk: 200).",
 )
-@click.option("--max-time", type=float, default=None, help="Stop simulating after this many s.")
+@click.option("--seed", type=int, default=0, show_default=True)
+@click.option("--loss", type=float, default=0.2, show_default=True, help="ET: message loss.")
+@click.option("--noise", type=float, default=2.0, show_default=True, help="ET: distance noise, mm.")
+@click.option(
+    "--max-time",
+    type=float,
+    default=None,
+    help="Simulated seconds to run (ET default 3 h; random walk: unlimited).",
+)
+@click.option(
+    "--layout", type=click.Choice(["queue", "cluster"]), default="queue", show_default=True
+)
+@click.option("--release-interval", type=float, default=None, help="ET: seconds between releases.")
+@click.option("--fit", is_flag=True, help="ET: with fewer robots than cells, form scale(shape, N).")
+@click.option(
+    "--speed",
+    type=float,
+    default=None,
+    help="Target x real time (+/- keys change it). Default: ET 60, random walk 10.",
+)
 @click.option(
     "--video",
     type=click.Path(dir_okay=False, path_type=Path),
@@ -75,11 +100,17 @@ def window_options(func):  # type: ignore[no-untyped-def]
 )
 @window_options
 def view(
+    shape: str | None,
     controller: str,
-    robots: int,
+    robots: int | None,
     seed: int,
-    speed: float,
+    loss: float,
+    noise: float,
     max_time: float | None,
+    layout: str,
+    release_interval: float | None,
+    fit: bool,
+    speed: float | None,
     video: Path | None,
     size: str,
     fps: float,
@@ -87,35 +118,83 @@ def view(
     out: Path,
     frames: int | None,
 ) -> None:
-    """Open the live viewer on a simulated swarm.
+    """Watch SHAPE grow with the ET algorithm in a live window (or a swarm random-walk).
 
     Keys: space pause, . step, +/- speed, wheel zoom, arrows pan, l/t/n links/trails/
     labels, click a robot to inspect it, drag to split, shift-drag to remove, right-click
-    to kill, r record video, s snapshot, h help, q quit.
+    to kill, r record video, s snapshot, h help, q quit. See docs/viewer.md.
     """
-    from etswarm.viewer.simrun import randomwalk_live_run
-    from etswarm.viewer.window import run_viewer
-
-    if robots < 1:
-        raise EtswarmError(f"--robots must be >= 1, got {robots}")
     if seed < 0:
         raise EtswarmError(f"--seed must be >= 0, got {seed}")
-    live = randomwalk_live_run(robots, seed=seed, max_time_s=max_time)
+    if robots is not None and robots < 1:
+        raise EtswarmError(f"--robots must be >= 1, got {robots}")
+    speed = DEFAULT_SPEED[controller] if speed is None else speed
+    if speed <= 0:
+        raise EtswarmError(f"--speed must be > 0, got {speed}")
+    window_size = _parse_size(size)
+    if controller == "randomwalk":
+        if shape is not None:
+            raise EtswarmError("--controller randomwalk takes no SHAPE")
+        from etswarm.viewer.simrun import randomwalk_live_run
+
+        live = randomwalk_live_run(robots or 200, seed=seed, max_time_s=max_time)
+    else:
+        if shape is None:
+            raise EtswarmError(
+                "missing SHAPE (a library name or a bitmap file); or use --controller randomwalk"
+            )
+        live = _et_live(shape, robots, seed, loss, noise, max_time, layout, release_interval, fit)
     if video is not None:
-        _write_video(live, video, fps, speed, frames or 300, _parse_size(size))
+        _write_video(live, video, fps, speed, frames or 300, window_size)
         return
     _check_display(frames)
+    from etswarm.viewer.window import run_viewer
+
     result = run_viewer(
         live,
-        size=_parse_size(size),
+        size=window_size,
         fps=fps,
         speed=speed,
         start_paused=paused,
         output_dir=out,
-        caption=f"etswarm view: {controller}",
+        caption=f"etswarm view: {shape or controller}",
         max_frames=frames,
     )
     _report(result)
+
+
+def _et_live(  # type: ignore[no-untyped-def]
+    shape: str,
+    robots: int | None,
+    seed: int,
+    loss: float,
+    noise: float,
+    max_time: float | None,
+    layout: str,
+    release_interval: float | None,
+    fit: bool,
+):
+    """The ET run of ``etswarm run`` with the same options, as a LiveRun."""
+    from etswarm.algorithm.live import ETLive
+    from etswarm.algorithm.params import ETParams
+    from etswarm.algorithm.run import ETRun, RunConfig
+
+    et = ETParams() if release_interval is None else ETParams(release_interval_s=release_interval)
+    config = RunConfig(
+        shape=shape,
+        robots=robots,
+        seed=seed,
+        loss=loss,
+        noise_mm=noise,
+        max_time_s=3 * 3600.0 if max_time is None else max_time,
+        layout=layout,
+        fit=fit,
+        et=et,
+    )
+    et_run = ETRun(config)
+    for note in et_run.notes:
+        click.echo(f"etswarm: {note}", err=True)
+    return ETLive(et_run)
 
 
 def _write_video(live, path: Path, fps: float, speed: float, frames: int, size) -> None:  # type: ignore[no-untyped-def]
