@@ -14,6 +14,7 @@ the figures into ``OUT/figures`` and writes ``OUT/report.md`` with the compariso
 from __future__ import annotations
 
 import json
+import math
 from collections.abc import Sequence
 from dataclasses import dataclass
 from pathlib import Path
@@ -302,7 +303,7 @@ def draw_snapshot(
     ax.set_title(f"t = {format_duration(snap['t_s'])}", fontsize=8)
 
 
-def _legend(fig: Figure, states: Sequence[int]) -> None:
+def _legend(fig: Figure, states: Sequence[int], outside: bool = False) -> None:
     from matplotlib.lines import Line2D
 
     names = _state_names()
@@ -312,7 +313,8 @@ def _legend(fig: Figure, states: Sequence[int]) -> None:
         for s in sorted(set(states))
         if 0 <= s < len(names)
     ]
-    fig.legend(handles=handles, loc="lower center", ncol=len(handles), fontsize=8, frameon=False)
+    where = "outside lower center" if outside else "lower center"
+    fig.legend(handles=handles, loc=where, ncol=len(handles), fontsize=8, frameon=False)
 
 
 def _pick_snapshots(snaps: Sequence[dict[str, Any]], count: int) -> list[dict[str, Any]]:
@@ -326,16 +328,20 @@ def _pick_snapshots(snaps: Sequence[dict[str, Any]], count: int) -> list[dict[st
 def figure_sequence(record: dict[str, Any], title: str, path: Path, panels: int = 6) -> Path:
     """A row of snapshots of one run (Figs. 5 and 8)."""
     snaps = _pick_snapshots(record["summary"]["snapshots"], panels)
-    fig = Figure(figsize=(2.6 * len(snaps), 3.3))
-    axes = fig.subplots(1, len(snaps), squeeze=False)[0]
+    cols = min(3, len(snaps))
+    rows = math.ceil(len(snaps) / cols)
+    fig = Figure(figsize=(3.4 * cols, 3.4 * rows + 0.9), layout="constrained")
+    axes = fig.subplots(rows, cols, squeeze=False).ravel()
     states: list[int] = []
     limits = snapshot_limits(snaps)
-    for ax, snap in zip(axes, snaps, strict=True):
+    for number, (ax, snap) in enumerate(zip(axes, snaps, strict=False)):
         draw_snapshot(ax, snap, limits=limits)
+        ax.set_title(f"({chr(ord('a') + number)}) {ax.get_title()}", fontsize=8)
         states += snap["state"]
+    for ax in axes[len(snaps):]:
+        ax.set_axis_off()
     fig.suptitle(title, fontsize=10)
-    _legend(fig, states)
-    fig.tight_layout(rect=(0, 0.08, 1, 0.95))
+    _legend(fig, states, outside=True)
     fig.savefig(path, dpi=110)
     return path
 
