@@ -178,13 +178,13 @@ def reproduce(
 ) -> Reproduction:
     """Run (or resume) the paper's experiments in ``out_dir`` and write figures and report.
 
-    ``seeds`` runs of `T` (the comparison table), ``shape_seeds`` (default seeds // 4, at
-    least 1) of the dumbbell, the starfish and the cut `T`. No report is written when the
+    ``seeds`` runs of `T` (the comparison table), ``shape_seeds`` (default: as many) of
+    the dumbbell, the starfish and the cut `T`. No report is written when the
     sweep was interrupted. Runs recorded as failed are run again.
     """
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
-    shape_seeds = shape_seeds if shape_seeds is not None else max(1, seeds // 4)
+    shape_seeds = shape_seeds if shape_seeds is not None else seeds
     notes: list[str] = []
     damage = damage_supported()
     if not damage:
