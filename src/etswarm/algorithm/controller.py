@@ -22,6 +22,7 @@ from etswarm.algorithm.memory import (
     NB_FLOOR,
     NB_ID,
     NB_LAST,
+    NB_MASK,
     NB_PREV,
     NB_QMIN,
     NB_RELEASED,
@@ -37,6 +38,7 @@ from etswarm.algorithm.memory import (
     R_EPOCH,
     R_FLOOR,
     R_FLOOR_SINCE,
+    R_MASK,
     R_NN,
     R_QMIN,
     R_QMIN_SINCE,
@@ -62,6 +64,7 @@ from etswarm.algorithm.params import (
     C_GENE_X0,
     C_GENE_Y0,
     C_RELEASE_LIMIT,
+    C_TICKS_CLEAR,
     C_TICKS_COOLDOWN,
     C_TICKS_DANGER,
     C_TICKS_MOVE_FRESH,
@@ -71,6 +74,7 @@ from etswarm.algorithm.params import (
     C_TICKS_RELEASE,
     C_TICKS_SETTLE,
     C_TICKS_YIELD_MAX,
+    F_BALANCE_TOL,
     F_CLEARANCE,
     F_CLOSING,
     F_CONSIST_TOL,
@@ -100,6 +104,8 @@ RIGHT = 3
 
 HALF_SQRT3 = 0.8660254037844386
 FAR = 1.0e9
+#: Readings of a searching robot older than this (ticks) are ignored for steering.
+SEARCHER_FRESH_TICKS = 31
 #: Inactive robots with no Active neighbour for this many evaluations become Active.
 INACTIVE_PATIENCE_TICKS = 31 * 60
 
@@ -195,6 +201,7 @@ def ingest(i, k, tick, in_data, in_dist, nb, nb_dist):  # type: ignore[no-untype
         nb[i, slot, NB_TX] = tx - 256 if tx >= 128 else tx
         nb[i, slot, NB_TY] = ty - 256 if ty >= 128 else ty
         nb[i, slot, NB_TS] = int(in_data[i, k, 5]) | (int(in_data[i, k, 6]) << 8)
+        nb[i, slot, NB_MASK] = int(in_data[i, k, 7])
     else:
         nb[i, slot, NB_QMIN] = int(in_data[i, k, 3]) | (int(in_data[i, k, 4]) << 8)
         nb[i, slot, NB_FLOOR] = (int(in_data[i, k, 5]) | (int(in_data[i, k, 6]) << 8)) - 1
@@ -215,7 +222,7 @@ def encode(i, ri, out_on, out_type, out_data):  # type: ignore[no-untyped-def]
         out_data[i, 4] = ri[i, R_TAG_Y] & 0xFF
         out_data[i, 5] = ri[i, R_TS] & 0xFF
         out_data[i, 6] = (ri[i, R_TS] >> 8) & 0xFF
-        out_data[i, 7] = min(ri[i, R_COUNT], 255)
+        out_data[i, 7] = ri[i, R_MASK] & 0x3F
         out_data[i, 8] = ri[i, R_EPOCH] & 0xFF
     else:
         out_data[i, 3] = ri[i, R_QMIN] & 0xFF
@@ -237,19 +244,20 @@ def set_state(i, ri, state, tick):  # type: ignore[no-untyped-def]
 def queued_rule(i, tick, ri, nb, ci):  # type: ignore[no-untyped-def]
     """Lowest-ID release from the repository (floor/min flooding, see ``messages``).
 
-    A robot leaves only when no searching robot is within earshot, so two searchers
-    never start side by side.
+    A robot leaves only when it has heard no searching robot for ``C_TICKS_CLEAR`` ticks,
+    so searchers never start side by side and the traffic around the repository throttles
+    the release rate.
     """
     fresh = ci[C_TICKS_NB_FRESH]
     floor = ri[i, R_FLOOR]
     released = ri[i, R_RELEASED]
     slots = nb.shape[1]
-    searcher_near = False
+    last_searcher = -(1 << 40)
     for m in range(slots):
+        if nb[i, m, NB_ID] >= 0 and nb[i, m, NB_STATE] == SEARCH:
+            last_searcher = max(last_searcher, nb[i, m, NB_LAST])
         if nb[i, m, NB_ID] >= 0 and tick - nb[i, m, NB_LAST] <= fresh:
             st = nb[i, m, NB_STATE]
-            if st == SEARCH:
-                searcher_near = True
             if st <= SEARCH:
                 floor = max(floor, nb[i, m, NB_FLOOR])
                 released = max(released, nb[i, m, NB_RELEASED])
@@ -272,7 +280,7 @@ def queued_rule(i, tick, ri, nb, ci):  # type: ignore[no-untyped-def]
     if (
         qmin == i
         and i > floor
-        and not searcher_near
+        and tick - last_searcher >= ci[C_TICKS_CLEAR]
         and released < ci[C_RELEASE_LIMIT]
         and tick - ri[i, R_QMIN_SINCE] >= ci[C_TICKS_QUIET]
         and tick - ri[i, R_FLOOR_SINCE] >= ci[C_TICKS_RELEASE]
@@ -289,14 +297,47 @@ def queued_rule(i, tick, ri, nb, ci):  # type: ignore[no-untyped-def]
 
 @njit(cache=True)
 def site_taken(i, x, y, nb):  # type: ignore[no-untyped-def]
-    """True when robot i's table holds a placed robot with tag (x, y) (they stay put)."""
+    """Robot i knows that site (x, y) is held: a placed robot in its table holds it (placed
+    robots stay put), or a placed robot next to it reports that neighbour site held."""
     for j in range(nb.shape[1]):
-        if (
-            nb[i, j, NB_ID] >= 0
-            and is_placed(nb[i, j, NB_STATE])
-            and nb[i, j, NB_TX] == x
-            and nb[i, j, NB_TY] == y
-        ):
+        if nb[i, j, NB_ID] < 0 or not is_placed(nb[i, j, NB_STATE]):
+            continue
+        jx = nb[i, j, NB_TX]
+        jy = nb[i, j, NB_TY]
+        if jx == x and jy == y:
+            return True
+        k = direction_index(x - jx, y - jy)
+        if k >= 0 and (nb[i, j, NB_MASK] >> k) & 1:
+            return True
+    return False
+
+
+@njit(cache=True)
+def known_held(i, x, y, nb, cx, cy):  # type: ignore[no-untyped-def]
+    """Site (x, y) is held, as robot i knows (or is the site (cx, cy) it would take)."""
+    if x == cx and y == cy:
+        return True
+    return site_taken(i, x, y, nb)
+
+
+@njit(cache=True)
+def encloses_a_site(i, cx, cy, nb, gene_flag, ci):  # type: ignore[no-untyped-def]
+    """Taking (cx, cy) would leave a free shape site next to it with no two adjacent free
+    neighbour sites: a robot could no longer reach it between its neighbours."""
+    for k in range(6):
+        sx = cx + DIR_X[k]
+        sy = cy + DIR_Y[k]
+        if gene_flag_at(gene_flag, ci, sx, sy) != 1 or site_taken(i, sx, sy, nb):
+            continue
+        prev_free = not known_held(i, sx + DIR_X[5], sy + DIR_Y[5], nb, cx, cy)
+        opening = False
+        for q in range(6):
+            free = not known_held(i, sx + DIR_X[q], sy + DIR_Y[q], nb, cx, cy)
+            if free and prev_free:
+                opening = True
+                break
+            prev_free = free
+        if not opening:
             return True
     return False
 
@@ -312,12 +353,14 @@ def find_site(i, tick, since, strict, nb, nb_dist, gene_flag, ci, cf):  # type: 
     at the one ``c2`` predicts. ``c`` must also have gene flag 1, be held by no robot it
     knows of, agree with every placed robot heard since ``since`` and, when ``strict``,
     every known robot of a neighbouring site must have been heard since ``since``; and
-    an Active robot must be adjacent to it (the least TS among them is returned).
+    an Active robot must be adjacent to it (the least TS among them is returned); and
+    taking it must not shut a free shape site next to it in (``encloses_a_site``).
 
     Returns ``(found, x, y, min_active_ts)``; the best-fitting candidate wins.
     """
     d = cf[F_SPACING]
     pair_tol = cf[F_PAIR_TOL]
+    balance_tol = cf[F_BALANCE_TOL]
     consist_tol = cf[F_CONSIST_TOL]
     fresh = ci[C_TICKS_NB_FRESH]
     slots = nb.shape[1]
@@ -337,6 +380,9 @@ def find_site(i, tick, since, strict, nb, nb_dist, gene_flag, ci, cf):  # type: 
                 continue
             if nb[i, b, NB_LAST] < since or abs(nb_dist[i, b] - d) > pair_tol:
                 continue
+            if abs(nb_dist[i, a] - nb_dist[i, b]) > balance_tol:
+                # Settle midway between the two references, not where the window opens.
+                continue
             k = direction_index(nb[i, b, NB_TX] - ax, nb[i, b, NB_TY] - ay)
             if k < 0:
                 continue
@@ -348,6 +394,8 @@ def find_site(i, tick, since, strict, nb, nb_dist, gene_flag, ci, cf):  # type: 
                 c2x = ax + DIR_X[k2]
                 c2y = ay + DIR_Y[k2]
                 if gene_flag_at(gene_flag, ci, cx, cy) != 1 or site_taken(i, cx, cy, nb):
+                    continue
+                if encloses_a_site(i, cx, cy, nb, gene_flag, ci):
                     continue
                 ruled_out_mirror = site_taken(i, c2x, c2y, nb)
                 ok = True
@@ -409,6 +457,8 @@ def search_rule(i, tick, new_msgs, ri, nb, nb_dist, motor, gene_flag, gene_nn, c
         est = nb_dist[i, m] - closing * (tick - nb[i, m, NB_LAST])
         st = nb[i, m, NB_STATE]
         if st == SEARCH:
+            if tick - nb[i, m, NB_LAST] > SEARCHER_FRESH_TICKS:
+                continue  # a moving robot's old reading says nothing about now
             nearest_searcher = min(nearest_searcher, est)
             if nb[i, m, NB_ID] < i and est < nearest_lower_searcher:
                 nearest_lower_searcher = est
@@ -494,6 +544,7 @@ def search_rule(i, tick, new_msgs, ri, nb, nb_dist, motor, gene_flag, gene_nn, c
     if obstacle < clearance or nearest < clearance:
         motor[i] = LEFT
     elif lost:
+        # Pivot on the spot (within a body length of where the group was last heard).
         motor[i] = RIGHT
     elif reading < aim:
         motor[i] = LEFT
@@ -563,6 +614,7 @@ def placed_rule(i, tick, ri, nb, nb_dist, ci, cf):  # type: ignore[no-untyped-de
         if seen_dirs & (1 << k):
             count += 1
     ri[i, R_COUNT] = count
+    ri[i, R_MASK] = seen_dirs
     nn = ri[i, R_NN]
 
     if state == INACTIVE:

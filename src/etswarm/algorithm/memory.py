@@ -41,6 +41,7 @@ R_CAND_Y = 14
 R_COOLDOWN = 15  # tick until which site candidates are ignored
 R_YIELD_SINCE = 16  # tick yielding began (-1: not yielding)
 R_COUNT = 17  # placed lattice neighbours heard (last evaluation)
+R_MASK = 29  # bit k set: a robot holds the neighbour site in direction k (last evaluation)
 R_BELOW_SINCE = 18  # tick the count fell below NN while Stable (-1: not below)
 R_QUASI_UNTIL = 19
 R_EPOCH = 20  # target epoch (bumped by regeneration)
@@ -52,7 +53,7 @@ R_REF_ID = 21
 R_REF_TREND = 24
 R_YLD_ID = 25
 R_YLD_TREND = 28
-R_FIELDS = 29
+R_FIELDS = 30
 
 SUB_FOLLOW = 0
 SUB_SETTLE = 1
@@ -68,7 +69,8 @@ NB_TS = 6
 NB_QMIN = 7
 NB_FLOOR = 8
 NB_RELEASED = 9
-NB_FIELDS = 10
+NB_MASK = 10  # a placed robot's neighbour-occupancy bits
+NB_FIELDS = 11
 
 #: Neighbour-table slots per robot (a lattice site has 6 neighbours and 6 at ~1.73 d).
 NB_SLOTS = 16

@@ -12,7 +12,9 @@ byte   placed robot (Inactive ..   Queued / Search robot
 3      tag X (int8)                lowest Queued ID heard, low byte
 4      tag Y (int8)                lowest Queued ID heard, high byte
 5-6    timestep TS (uint16)        release floor + 1 (uint16; 0 = none released)
-7      placed-neighbour count      robots released so far, low byte
+7      neighbour-site bits (bit k  robots released so far, low byte
+       = a robot holds the site in
+       lattice direction k)
 8      target epoch (uint8)        robots released so far, high byte
 =====  ==========================  ==============================================
 

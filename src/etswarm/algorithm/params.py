@@ -25,7 +25,8 @@ C_RELEASE_LIMIT = 9  # robots the repository releases (cells of the target - 3 s
 C_GENE_X0 = 10  # tag X of gene grid column 0
 C_GENE_Y0 = 11  # tag Y of gene grid row 0
 C_EVAL_EVERY = 12  # placed robots re-evaluate their state every this many ticks
-N_CI = 13
+C_TICKS_CLEAR = 13  # a Queued robot leaves only after hearing no searcher this long
+N_CI = 14
 
 F_SPACING = 0  # lattice spacing d
 F_NB_RADIUS = 1  # a placed robot nearer than this is a lattice neighbour
@@ -36,7 +37,12 @@ F_YIELD_DIST = 5  # yield to a lower-ID searcher nearer than this
 F_FOLLOW_OFFSET = 6  # edge-following aims at d + this (clearance for the bodies)
 F_CLOSING = 7  # assumed worst-case closing speed between readings, mm per tick
 F_CLEARANCE = 8  # a searcher turns away from any other robot nearer than this
-N_CF = 9
+F_BALANCE_TOL = 9  # the two references' distances may differ by at most this
+N_CF = 10
+
+
+#: Parameters that may be zero (all others must be positive).
+NON_NEGATIVE = frozenset({"follow_offset_mm"})
 
 
 @dataclass(frozen=True)
@@ -44,29 +50,34 @@ class ETParams:
     """Tunable constants of the ET controller (defaults suit DESIGN §2 robots)."""
 
     spacing_mm: float = 40.0
-    neighbour_radius_factor: float = 1.55
+    neighbour_radius_factor: float = 1.7
     neighbour_timeout_s: float = 2.5
     danger_timeout_s: float = 8.0
     quasi_s: float = 4.0
     release_interval_s: float = 30.0
     release_quiet_s: float = 4.0
+    release_clear_s: float = 15.0
     settle_s: float = 1.5
     rejected_cooldown_s: float = 3.0
     yield_max_s: float = 30.0
     steer_fresh_s: float = 3.0
-    pair_tol_mm: float = 6.0
-    consistency_tol_mm: float = 12.0
+    pair_tol_mm: float = 4.0
+    consistency_tol_mm: float = 16.0
     follow_band_mm: float = 3.0
-    follow_offset_mm: float = 2.0
+    follow_offset_mm: float = 0.0
     closing_speed_mm_s: float = 5.0
     clearance_mm: float = 38.0
+    balance_tol_mm: float = 8.0
     yield_distance_mm: float = 60.0
     eval_every_ticks: int = 4
 
     def __post_init__(self) -> None:
         for f in fields(self):
             value = getattr(self, f.name)
-            if not value > 0:
+            if f.name in NON_NEGATIVE:
+                if not value >= 0:
+                    raise EtswarmError(f"ET parameter {f.name} must be >= 0, got {value}")
+            elif not value > 0:
                 raise EtswarmError(f"ET parameter {f.name} must be > 0, got {value}")
         if self.spacing_mm * self.neighbour_radius_factor >= self.spacing_mm * 3**0.5:
             raise EtswarmError(
@@ -96,6 +107,7 @@ class ETParams:
         ci[C_GENE_X0] = gene_x0
         ci[C_GENE_Y0] = gene_y0
         ci[C_EVAL_EVERY] = self.eval_every_ticks
+        ci[C_TICKS_CLEAR] = ticks(self.release_clear_s)
         cf = np.zeros(N_CF, dtype=np.float64)
         cf[F_SPACING] = self.spacing_mm
         cf[F_NB_RADIUS] = self.spacing_mm * self.neighbour_radius_factor
@@ -106,4 +118,5 @@ class ETParams:
         cf[F_FOLLOW_OFFSET] = self.follow_offset_mm
         cf[F_CLOSING] = self.closing_speed_mm_s / ticks_per_s
         cf[F_CLEARANCE] = self.clearance_mm
+        cf[F_BALANCE_TOL] = self.balance_tol_mm
         return ci, cf
