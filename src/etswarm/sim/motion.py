@@ -7,7 +7,8 @@ leg); turning right (motor 3) pivots clockwise about the rear-right leg at
 ``heading - leg_angle``. Optional noise while moving: a relative per-tick speed jitter
 N(0, speed_noise) and a heading jitter N(0, heading_noise) rad, from the motion stream.
 With walls the centre is kept inside [r, arena - r]^2. Dead or absent robots do not move.
-Every robot that moved is refiled in the grid and appended to the collision work list.
+Every robot that moved is updated in the grid (rebuilt if one left its slack box) and
+appended to the collision work list.
 """
 
 from __future__ import annotations
@@ -15,7 +16,7 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
-from etswarm.sim.neighbours import cell_of, relink
+from etswarm.sim.neighbours import G_CELL, G_MARGIN, rebuild_keeping_list
 
 
 @njit(cache=True, inline="always")
@@ -31,15 +32,18 @@ def clamp_to_arena(v, radius, arena):
 @njit(cache=True)
 def move_phase(cfg, grid, pos, heading, motor, alive, present, speed, turn_rate,
                dirty, dirty_flag, n_dirty, rng):
-    """Advance every robot whose motor is on by one tick; returns the work-list length."""
+    """Advance every robot whose motor is on by one tick; returns the work-list length.
+
+    The collision work list ``dirty`` holds grid slots (flags by slot in ``dirty_flag``).
+    """
     dt = cfg.dt
     r = cfg.radius
     leg = cfg.leg_angle
     walls = cfg.arena > 0.0
     two_pi = 2.0 * np.pi
-    head, nxt, prv, cell_x, cell_y = grid.head, grid.nxt, grid.prv, grid.cell_x, grid.cell_y
-    known_pos = grid.known_pos
-    inv = grid.inv_cell[0]
+    sx, sy, slot, sbx, sby = grid.sx, grid.sy, grid.slot, grid.sbx, grid.sby
+    span = grid.geom[G_CELL] + 2.0 * grid.geom[G_MARGIN]
+    stale = False
     for i in range(pos.shape[0]):
         m = motor[i]
         if m == 0 or not alive[i] or not present[i]:
@@ -75,14 +79,17 @@ def move_phase(cfg, grid, pos, heading, motor, alive, present, speed, turn_rate,
         pos[i, 0] = x
         pos[i, 1] = y
         heading[i] = h_new
-        known_pos[i, 0] = x
-        known_pos[i, 1] = y
-        cx = cell_of(x, inv)
-        cy = cell_of(y, inv)
-        if cx != cell_x[i] or cy != cell_y[i]:
-            relink(head, nxt, prv, cell_x, cell_y, i, cx, cy)
-        if dirty_flag[i] == 0:
-            dirty_flag[i] = 1
-            dirty[n_dirty] = i
+        s = slot[i]
+        sx[s] = x
+        sy[s] = y
+        bx = sbx[s]
+        by = sby[s]
+        if x < bx or x >= bx + span or y < by or y >= by + span:
+            stale = True
+        if dirty_flag[s] == 0:
+            dirty_flag[s] = 1
+            dirty[n_dirty] = s
             n_dirty += 1
+    if stale:
+        rebuild_keeping_list(grid, pos, present, dirty, n_dirty, dirty_flag)
     return n_dirty

@@ -1,30 +1,31 @@
-"""Neighbour search shared by the radio and the collisions: an incremental spatial hash.
+"""Neighbour search shared by the radio and the collisions: a cell list with slack.
 
-The plane is cut into square cells of side ``cell_mm``; cell ``(cx, cy)`` holds the robots
-whose centre lies in ``[cx*cell, (cx+1)*cell) x [cy*cell, (cy+1)*cell)``. Cells are hashed
-into a power-of-two table of buckets, so the world needs no bounds (walls are optional).
-Each bucket is a doubly linked list of robot indices, which makes inserting, removing and
-moving one robot O(1): a robot that did not move costs nothing, and a robot that moved
-within its cell costs one comparison.
+At each rebuild the bounding box of the present robots is cut into ``nx x ny`` square
+cells (side at least the minimum cell size, larger only if more cells than the capacity
+max(1024, 4 N) would be needed, so walls are optional and an unbounded swarm still
+works). A counting sort by cell (row-major, stable in robot index, so the layout is a
+function of the positions only) stores each cell's robots contiguously in "slot" order,
+with copies of their positions; a row of neighbouring cells is one contiguous slot range.
 
-The hot loops (move, collide) inline the "did the cell change?" test and call
-:func:`relink` only when it did: passing arrays to a compiled function costs reference
-counting on every call, which would dominate a per-robot loop.
+- ``start``  (C+1,) int32: cell c = cy*nx + cx holds slots ``start[c] .. start[c+1]-1``
+- ``sx``, ``sy`` (N,) float64 mm: position of the robot in each slot (kept current)
+- ``sidx``   (N,) int32: robot in each slot
+- ``slot``   (N,) int32: slot of each robot, -1 if not filed (absent)
+- ``sbx``, ``sby`` (N,) float64 mm: lower corner of the filed cell minus the margin,
+  by slot (the robot's slack box is this corner plus cell + 2 margin)
+- ``geom``   (6,) float64: minimum cell, margin, cell, 1/cell, origin x, origin y (mm)
+- ``dims``   (2,) int64: nx, ny
+- ``state``  (2,) int64: [stale flag, number of rebuilds]
 
-Queries scan every cell overlapping the box ``[x-q, x+q] x [y-q, y+q]`` and keep only the
-robots whose stored cell is the scanned cell (two cells may share a bucket), so each robot
-is seen at most once per query. With ``cell_mm = 4 * body radius`` a contact query
-(q = 2 r) touches 2 x 2 cells and a radio query (q = 70 mm) 3 x 3 or 4 x 4.
+A filed robot may wander up to ``margin`` mm outside its filed cell before the list must
+be rebuilt (O(N + cells)); queries widen their box by the margin and clip it to the
+grid, so results stay exact. The
+phases keep ``sx``/``sy`` in step with ``pos`` and raise the stale flag when a robot
+leaves its slack box; they rebuild before the next query. Robots that do not move cost
+nothing, and a candidate check reads contiguous memory. Outside edits of ``pos`` are
+detected by comparing ``pos`` with the slot copies (:func:`grid_sync`).
 
-All functions are numba-compiled and work on a :class:`Grid` of plain arrays:
-
-- ``head``   (B,) int32: first robot of each bucket, -1 if empty (B a power of two >= 2 N)
-- ``nxt``    (N,) int32: next robot in the same bucket, -1 at the end
-- ``prv``    (N,) int32: previous robot in the same bucket, -1 at the front
-- ``cell_x``, ``cell_y`` (N,) int64: the cell each robot is filed under
-- ``in_grid`` (N,) bool: robot is filed (present robots only)
-- ``known_pos`` (N, 2) float64 mm: the position the grid last saw, to detect outside edits
-- ``inv_cell`` (1,) float64: 1 / cell_mm
+With ``cell = 4 r + 2 margin`` a contact query (radius 2 r) scans 2 rows of 2 cells.
 """
 
 from __future__ import annotations
@@ -36,173 +37,200 @@ from numba import njit
 
 
 class Grid(NamedTuple):
-    """The spatial hash (see the module docstring for every field's shape and meaning)."""
+    """The cell list (see the module docstring for every field's shape and meaning)."""
 
-    head: np.ndarray
-    nxt: np.ndarray
-    prv: np.ndarray
-    cell_x: np.ndarray
-    cell_y: np.ndarray
-    in_grid: np.ndarray
-    known_pos: np.ndarray
-    inv_cell: np.ndarray
+    start: np.ndarray
+    sx: np.ndarray
+    sy: np.ndarray
+    sidx: np.ndarray
+    slot: np.ndarray
+    sbx: np.ndarray
+    sby: np.ndarray
+    geom: np.ndarray
+    dims: np.ndarray
+    state: np.ndarray
 
 
-def make_grid(n_robots: int, cell_mm: float) -> Grid:
-    """An empty grid for ``n_robots`` robots and cells of side ``cell_mm`` mm."""
-    if cell_mm <= 0:
-        raise ValueError(f"cell size must be > 0 mm, got {cell_mm}")
-    buckets = 1024
-    while buckets < 2 * n_robots:
-        buckets *= 2
+#: indices into Grid.geom
+G_CELL_MIN, G_MARGIN, G_CELL, G_INV, G_OX, G_OY = 0, 1, 2, 3, 4, 5
+
+
+def make_grid(n_robots: int, cell_mm: float, margin_mm: float) -> Grid:
+    """An empty cell list for ``n_robots`` robots: cells of at least ``cell_mm`` mm, slack
+    ``margin_mm`` mm, at most max(1024, 4 N) cells."""
+    if cell_mm <= 0 or margin_mm < 0:
+        raise ValueError(f"bad grid geometry: cell {cell_mm} mm, margin {margin_mm} mm")
+    capacity = max(1024, 4 * n_robots)
     return Grid(
-        head=np.full(buckets, -1, dtype=np.int32),
-        nxt=np.full(n_robots, -1, dtype=np.int32),
-        prv=np.full(n_robots, -1, dtype=np.int32),
-        cell_x=np.zeros(n_robots, dtype=np.int64),
-        cell_y=np.zeros(n_robots, dtype=np.int64),
-        in_grid=np.zeros(n_robots, dtype=np.bool_),
-        known_pos=np.full((n_robots, 2), np.nan),
-        inv_cell=np.array([1.0 / cell_mm]),
+        start=np.zeros(capacity + 1, dtype=np.int32),
+        sx=np.zeros(n_robots),
+        sy=np.zeros(n_robots),
+        sidx=np.zeros(n_robots, dtype=np.int32),
+        slot=np.full(n_robots, -1, dtype=np.int32),
+        sbx=np.zeros(n_robots),
+        sby=np.zeros(n_robots),
+        geom=np.array([cell_mm, margin_mm, cell_mm, 1.0 / cell_mm, 0.0, 0.0]),
+        dims=np.ones(2, dtype=np.int64),
+        state=np.zeros(2, dtype=np.int64),
     )
 
 
 @njit(cache=True, inline="always")
-def cell_of(v: float, inv_cell: float) -> int:
-    """Cell coordinate of a position coordinate ``v`` (mm)."""
-    return np.int64(np.floor(v * inv_cell))
-
-
-@njit(cache=True, inline="always")
-def bucket_of(cx: int, cy: int, mask: int) -> int:
-    """Bucket of cell (cx, cy): a multiplicative hash masked to the table size."""
-    h = (cx * np.int64(0x9E3779B1)) ^ (cy * np.int64(0x85EBCA77))
-    h ^= h >> np.int64(15)
-    return h & mask
-
-
-@njit(cache=True, inline="always")
-def unlink(head, nxt, prv, cell_x, cell_y, i):
-    """Remove robot ``i`` from its bucket list (arrays of a Grid)."""
-    p = prv[i]
-    q = nxt[i]
-    if p >= 0:
-        nxt[p] = q
-    else:
-        head[bucket_of(cell_x[i], cell_y[i], head.shape[0] - 1)] = q
-    if q >= 0:
-        prv[q] = p
-    nxt[i] = -1
-    prv[i] = -1
-
-
-@njit(cache=True, inline="always")
-def link(head, nxt, prv, cell_x, cell_y, i, cx, cy):
-    """File robot ``i`` under cell (cx, cy) at the front of its bucket list."""
-    b = bucket_of(cx, cy, head.shape[0] - 1)
-    first = head[b]
-    nxt[i] = first
-    prv[i] = -1
-    if first >= 0:
-        prv[first] = i
-    head[b] = i
-    cell_x[i] = cx
-    cell_y[i] = cy
+def cell_range(v, reach, origin, inv, n_cells):
+    """First and last cell index (clipped to [0, n_cells)) overlapping [v-reach, v+reach]."""
+    lo = np.int64(np.floor((v - reach - origin) * inv))
+    hi = np.int64(np.floor((v + reach - origin) * inv))
+    if lo < 0:
+        lo = 0
+    if hi > n_cells - 1:
+        hi = n_cells - 1
+    return lo, hi
 
 
 @njit(cache=True)
-def relink(head, nxt, prv, cell_x, cell_y, i, cx, cy):
-    """Move robot ``i`` (filed) to cell (cx, cy). Called only when a robot changes cell."""
-    unlink(head, nxt, prv, cell_x, cell_y, i)
-    link(head, nxt, prv, cell_x, cell_y, i, cx, cy)
+def grid_rebuild(grid, pos, present):
+    """File every present robot by its current position (counting sort, O(N + cells)).
+
+    The grid covers the bounding box of the present robots; cells grow beyond the minimum
+    size only if the box would need more cells than the capacity.
+    """
+    n = pos.shape[0]
+    start = grid.start
+    capacity = start.shape[0] - 1
+    margin = grid.geom[G_MARGIN]
+    minx = np.inf
+    miny = np.inf
+    maxx = -np.inf
+    maxy = -np.inf
+    for i in range(n):
+        if present[i]:
+            minx = min(minx, pos[i, 0])
+            maxx = max(maxx, pos[i, 0])
+            miny = min(miny, pos[i, 1])
+            maxy = max(maxy, pos[i, 1])
+    if minx > maxx:
+        minx = maxx = miny = maxy = 0.0
+    cell = grid.geom[G_CELL_MIN]
+    nx = np.int64((maxx - minx) / cell) + 1
+    ny = np.int64((maxy - miny) / cell) + 1
+    while nx * ny > capacity:
+        cell *= 1.25
+        nx = np.int64((maxx - minx) / cell) + 1
+        ny = np.int64((maxy - miny) / cell) + 1
+    inv = 1.0 / cell
+    grid.geom[G_CELL] = cell
+    grid.geom[G_INV] = inv
+    grid.geom[G_OX] = minx
+    grid.geom[G_OY] = miny
+    grid.dims[0] = nx
+    grid.dims[1] = ny
+    n_cells = nx * ny
+    cell_idx = np.empty(n, dtype=np.int64)
+    start[: n_cells + 1] = 0
+    for i in range(n):
+        if present[i]:
+            cx = min(np.int64((pos[i, 0] - minx) * inv), nx - 1)
+            cy = min(np.int64((pos[i, 1] - miny) * inv), ny - 1)
+            c = cy * nx + cx
+            cell_idx[i] = c
+            start[c + 1] += 1
+        else:
+            cell_idx[i] = -1
+    for c in range(n_cells):
+        start[c + 1] += start[c]
+    fill = start[:n_cells].copy()
+    for i in range(n):
+        c = cell_idx[i]
+        if c < 0:
+            grid.slot[i] = -1
+            continue
+        k = fill[c]
+        fill[c] = k + 1
+        grid.slot[i] = k
+        grid.sidx[k] = i
+        grid.sx[k] = pos[i, 0]
+        grid.sy[k] = pos[i, 1]
+        grid.sbx[k] = minx + (c % nx) * cell - margin
+        grid.sby[k] = miny + (c // nx) * cell - margin
+    grid.state[0] = 0
+    grid.state[1] += 1
 
 
 @njit(cache=True)
-def grid_insert(grid: Grid, i: int, x: float, y: float) -> None:
-    """File robot ``i`` at position (x, y) mm."""
-    inv = grid.inv_cell[0]
-    link(grid.head, grid.nxt, grid.prv, grid.cell_x, grid.cell_y, i, cell_of(x, inv),
-         cell_of(y, inv))
-    grid.in_grid[i] = True
-    grid.known_pos[i, 0] = x
-    grid.known_pos[i, 1] = y
+def rebuild_keeping_list(grid, pos, present, lst, n_list, flag):
+    """Rebuild the grid while a work list of slots ``lst[:n_list]`` (flags by slot in
+    ``flag``) is live: the list and its flags are carried over to the new slots."""
+    for k in range(n_list):
+        s = lst[k]
+        flag[s] = 0
+        lst[k] = grid.sidx[s]
+    grid_rebuild(grid, pos, present)
+    for k in range(n_list):
+        s = grid.slot[lst[k]]
+        lst[k] = s
+        flag[s] = 1
 
 
 @njit(cache=True)
-def grid_remove(grid: Grid, i: int) -> None:
-    """Take robot ``i`` out of the grid (no-op if it is not filed)."""
-    if not grid.in_grid[i]:
-        return
-    unlink(grid.head, grid.nxt, grid.prv, grid.cell_x, grid.cell_y, i)
-    grid.in_grid[i] = False
-    grid.known_pos[i, 0] = np.nan
-    grid.known_pos[i, 1] = np.nan
-
-
-@njit(cache=True)
-def grid_move(grid: Grid, i: int, x: float, y: float) -> None:
-    """Robot ``i`` (filed) is now at (x, y) mm: refile it only if its cell changed."""
-    inv = grid.inv_cell[0]
-    grid.known_pos[i, 0] = x
-    grid.known_pos[i, 1] = y
-    cx = cell_of(x, inv)
-    cy = cell_of(y, inv)
-    if cx != grid.cell_x[i] or cy != grid.cell_y[i]:
-        relink(grid.head, grid.nxt, grid.prv, grid.cell_x, grid.cell_y, i, cx, cy)
-
-
-@njit(cache=True)
-def grid_sync(grid: Grid, pos: np.ndarray, present: np.ndarray, dirty: np.ndarray,
-              dirty_flag: np.ndarray, n_dirty: int) -> int:
+def grid_sync(grid, pos, present, dirty, dirty_flag, n_dirty):
     """Bring the grid in line with ``pos``/``present`` after edits made outside the kernel.
 
-    Robots that appeared or whose position differs from what the grid last saw are
-    (re)filed and appended to the work list ``dirty`` (flags in ``dirty_flag``), so the
-    next collision phase examines them. Robots no longer present are removed. Returns the
-    new work-list length. Cost O(N) comparisons, nothing refiled when nothing changed.
+    If any present robot is unfiled or not where its slot copy says, or an absent robot
+    is still filed (or the grid is stale), the grid is rebuilt and those robots are put
+    on the collision work list ``dirty`` (slots; flags by slot in ``dirty_flag``), so the
+    next collision phase examines them. Returns the new work-list length. Costs O(N)
+    comparisons and nothing else when nothing changed. Call with an empty work list.
     """
-    for i in range(pos.shape[0]):
+    changed = grid.state[0] != 0
+    n = pos.shape[0]
+    edited = np.zeros(n, dtype=np.bool_)
+    for i in range(n):
+        s = grid.slot[i]
         if present[i]:
-            x = pos[i, 0]
-            y = pos[i, 1]
-            if grid.in_grid[i]:
-                if x == grid.known_pos[i, 0] and y == grid.known_pos[i, 1]:
-                    continue
-                grid_move(grid, i, x, y)
-            else:
-                grid_insert(grid, i, x, y)
-            if dirty_flag[i] == 0:
-                dirty_flag[i] = 1
-                dirty[n_dirty] = i
-                n_dirty += 1
-        elif grid.in_grid[i]:
-            grid_remove(grid, i)
+            if s >= 0 and pos[i, 0] == grid.sx[s] and pos[i, 1] == grid.sy[s]:
+                continue
+            changed = True
+            edited[i] = True
+        elif s >= 0:
+            changed = True
+    if changed:
+        grid_rebuild(grid, pos, present)
+        for i in range(n):
+            if edited[i]:
+                s = grid.slot[i]
+                if dirty_flag[s] == 0:
+                    dirty_flag[s] = 1
+                    dirty[n_dirty] = s
+                    n_dirty += 1
     return n_dirty
 
 
 @njit(cache=True)
-def neighbours_within(grid: Grid, pos: np.ndarray, i: int, radius: float,
-                      out: np.ndarray) -> int:
-    """Indices of filed robots j != i with centre distance <= ``radius`` mm of robot i.
+def neighbours_within(grid, pos, i, radius, out):
+    """Robots j != i filed in the grid with centre distance <= ``radius`` mm of robot i.
 
-    Writes them to ``out`` (int32, large enough) and returns how many. Used by tests and
-    by slow-path helpers; the kernels inline the same loop.
+    Writes their indices to ``out`` (int32, large enough) in slot order and returns how
+    many. The phases inline the same loop.
     """
-    inv = grid.inv_cell[0]
-    mask = grid.head.shape[0] - 1
+    start = grid.start
+    inv = grid.geom[G_INV]
+    nx = grid.dims[0]
     x = pos[i, 0]
     y = pos[i, 1]
     r2 = radius * radius
+    reach = radius + grid.geom[G_MARGIN]
+    cx0, cx1 = cell_range(x, reach, grid.geom[G_OX], inv, nx)
+    cy0, cy1 = cell_range(y, reach, grid.geom[G_OY], inv, grid.dims[1])
     count = 0
-    for cx in range(cell_of(x - radius, inv), cell_of(x + radius, inv) + 1):
-        for cy in range(cell_of(y - radius, inv), cell_of(y + radius, inv) + 1):
-            j = grid.head[bucket_of(cx, cy, mask)]
-            while j >= 0:
-                if j != i and grid.cell_x[j] == cx and grid.cell_y[j] == cy:
-                    dx = pos[j, 0] - x
-                    dy = pos[j, 1] - y
-                    if dx * dx + dy * dy <= r2:
-                        out[count] = j
-                        count += 1
-                j = grid.nxt[j]
+    for cy in range(cy0, cy1 + 1):
+        row = cy * nx
+        for k in range(start[row + cx0], start[row + cx1 + 1]):
+            j = grid.sidx[k]
+            if j == i:
+                continue
+            dx = grid.sx[k] - x
+            dy = grid.sy[k] - y
+            if dx * dx + dy * dy <= r2:
+                out[count] = j
+                count += 1
     return count

@@ -6,7 +6,8 @@ broadcast phase comes up this tick (``tick % tx_period == tx_phase``) sends its 
 ``comm_range`` receives a copy unless it is lost (independent probability ``loss`` per
 receiver); the copy carries the centre distance plus N(0, dist_noise) noise, clipped at 0.
 A full inbox (K messages) drops further copies and counts them. Senders are handled in
-index order, so inbox order is sender order.
+index order, so inbox order is sender order; receivers of one sender come in
+cell-list order.
 """
 
 from __future__ import annotations
@@ -14,7 +15,7 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
-from etswarm.sim.neighbours import bucket_of, cell_of
+from etswarm.sim.neighbours import G_INV, G_MARGIN, G_OX, G_OY, cell_range
 
 
 @njit(cache=True)
@@ -27,11 +28,16 @@ def radio_phase(tick, cfg, grid, pos, alive, present, tx_phase, out_on, out_type
     slot = tick % cfg.tx_period
     rng_r = cfg.comm_range
     r2 = rng_r * rng_r
-    head, nxt, cell_x, cell_y = grid.head, grid.nxt, grid.cell_x, grid.cell_y
-    inv = grid.inv_cell[0]
-    mask = head.shape[0] - 1
+    start, sx, sy, sidx = grid.start, grid.sx, grid.sy, grid.sidx
+    inv = grid.geom[G_INV]
+    ox = grid.geom[G_OX]
+    oy = grid.geom[G_OY]
+    nx = grid.dims[0]
+    ny = grid.dims[1]
+    reach = rng_r + grid.geom[G_MARGIN]
     loss = cfg.loss
     noise = cfg.dist_noise
+    n_bytes = out_data.shape[1]
     sent = 0
     delivered = 0
     lost = 0
@@ -43,34 +49,37 @@ def radio_phase(tick, cfg, grid, pos, alive, present, tx_phase, out_on, out_type
         x = pos[i, 0]
         y = pos[i, 1]
         mtype = out_type[i]
-        for cx in range(cell_of(x - rng_r, inv), cell_of(x + rng_r, inv) + 1):
-            for cy in range(cell_of(y - rng_r, inv), cell_of(y + rng_r, inv) + 1):
-                j = head[bucket_of(cx, cy, mask)]
-                while j >= 0:
-                    if j != i and cell_x[j] == cx and cell_y[j] == cy and alive[j]:
-                        dx = pos[j, 0] - x
-                        dy = pos[j, 1] - y
-                        d2 = dx * dx + dy * dy
-                        if d2 <= r2:
-                            if loss > 0.0 and rng.random() < loss:
-                                lost += 1
-                            else:
-                                k = in_count[j]
-                                if k >= cap:
-                                    overflow += 1
-                                else:
-                                    d = np.sqrt(d2)
-                                    if noise > 0.0:
-                                        d += noise * rng.standard_normal()
-                                        if d < 0.0:
-                                            d = 0.0
-                                    in_type[j, k] = mtype
-                                    for b in range(out_data.shape[1]):
-                                        in_data[j, k, b] = out_data[i, b]
-                                    in_dist[j, k] = d
-                                    in_count[j] = k + 1
-                                    delivered += 1
-                    j = nxt[j]
+        cx0, cx1 = cell_range(x, reach, ox, inv, nx)
+        cy0, cy1 = cell_range(y, reach, oy, inv, ny)
+        for cy in range(cy0, cy1 + 1):
+            row = cy * nx
+            for s in range(start[row + cx0], start[row + cx1 + 1]):
+                dx = sx[s] - x
+                dy = sy[s] - y
+                d2 = dx * dx + dy * dy
+                if d2 > r2:
+                    continue
+                j = sidx[s]
+                if j == i or not alive[j]:
+                    continue
+                if loss > 0.0 and rng.random() < loss:
+                    lost += 1
+                    continue
+                k = in_count[j]
+                if k >= cap:
+                    overflow += 1
+                    continue
+                d = np.sqrt(d2)
+                if noise > 0.0:
+                    d += noise * rng.standard_normal()
+                    if d < 0.0:
+                        d = 0.0
+                in_type[j, k] = mtype
+                for c in range(n_bytes):
+                    in_data[j, k, c] = out_data[i, c]
+                in_dist[j, k] = d
+                in_count[j] = k + 1
+                delivered += 1
     counters[0] += sent
     counters[1] += delivered
     counters[2] += lost

@@ -87,8 +87,9 @@ class Simulator:
         self.rng_controller = stream(self.seed, "controller")
         self.cfg = self.params.kernel_config()
         n = world.n
-        self.grid: Grid = make_grid(
-            n, max(4.0 * self.params.body_radius_mm, 0.5 * self.params.comm_range_mm))
+        r = self.params.body_radius_mm
+        margin = max(1.0, 0.15 * r)
+        self.grid: Grid = make_grid(n, 4.0 * r + 2.0 * margin, margin)
         self._dirty = np.zeros(n, dtype=np.int32)
         self._dirty_flag = np.zeros(n, dtype=np.uint8)
         self._spare = np.zeros(n, dtype=np.int32)
@@ -144,7 +145,7 @@ class Simulator:
         n_dirty = move_phase(self.cfg, g, w.pos, w.heading, w.motor, w.alive, w.present,
                              w.speed, w.turn_rate, self._dirty, self._dirty_flag, n_dirty,
                              self.rng_motion)
-        collide_phase(self.cfg, g, w.pos, self._dirty, self._dirty_flag, n_dirty,
+        collide_phase(self.cfg, g, w.pos, w.present, self._dirty, self._dirty_flag, n_dirty,
                       self._spare, w.counters)
         w.tick += 1
 

@@ -28,6 +28,7 @@ COUNTER_NAMES = (
     "inbox_overflow",  # copies dropped because the receiver's inbox was full
     "pushes",  # pairwise overlap resolutions
     "push_pass_limit",  # ticks whose collision phase hit max_push_passes
+    "collision_checks",  # robots examined by the collision phase (all passes)
 )
 
 
@@ -49,7 +50,7 @@ class World:
         in_count: (N,) int32 messages in the inbox this tick (<= K).
         in_type: (N, K) uint8.  in_data: (N, K, 9) uint8.
         in_dist: (N, K) float32 mm, measured centre distance of each message's sender.
-        counters: (6,) int64 running totals, named by :data:`COUNTER_NAMES`.
+        counters: (7,) int64 running totals, named by :data:`COUNTER_NAMES`.
         tick: int, the world clock (ticks since the start).
     """
 
