@@ -66,7 +66,11 @@ def test_report_from_records(tmp_path: Path) -> None:
     # formed seeds 0, 1, 2: 9000, 9500, 10000 s -> median 9500 s = 2 h 38 min 20 s
     assert "| `T` formation time, simulated | 2 h 38 min 20 s (IQR" in text
     assert "| 2 h 50 min 8 s |" in text
-    assert "Shown: seed 1, the run with most robots not Stable at the end (2 Active)" in text
+    # seed 1 formed but 2 robots stayed Active: closer (Jaccard 1.0) than seed 3 (0.8)
+    assert "Shown: seed 1, the failed run closest to the target (Jaccard 1.0, formed: yes);" \
+        " robots not Stable at the end: 2 Active." in text
+    assert "Robots not Stable at the end, all runs together: Active 2." in text
+    assert "1 runs ended with a tag held by two robots." in text
     assert "Not formed within the time limit: seeds 3." in text
     assert "Seed 1 (the median formed run)." in text
     assert "- a note" in text and (tmp_path / "comparison.json").is_file()
