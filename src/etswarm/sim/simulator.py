@@ -101,6 +101,7 @@ class Simulator:
                 raise TypeError("controller.mem must be a tuple whose element 0 is a (1,) "
                                 "int64 stop-flag array")
             self._kernel = load_kernel(controller.step)
+            self._call_kernel(0)  # compile, or load from the disk cache, now
         elif not callable(getattr(controller, "step", None)):
             raise TypeError("controller needs a step(view) method or an njit step + mem")
 
@@ -113,22 +114,26 @@ class Simulator:
         """Run up to ``n`` ticks; return how many ran (fewer if the controller asked to stop)."""
         if n <= 0:
             return 0
-        w = self.world
         if self.fast:
-            done = int(self._kernel(
-                int(n), int(w.tick), self.cfg, self.grid, w.pos, w.heading, w.motor, w.led,
-                w.alive, w.present, w.speed, w.turn_rate, w.tx_phase, w.out_on, w.out_type,
-                w.out_data, w.in_count, w.in_type, w.in_data, w.in_dist, w.counters,
-                self._dirty, self._dirty_flag, self._spare, self.rng_motion, self.rng_radio,
-                self.rng_controller, self.controller.mem,
-            ))
-            w.tick += done
+            done = self._call_kernel(n)
+            self.world.tick += done
             return done
         for k in range(n):
             self._slow_tick()
             if getattr(self.controller, "stop_requested", False):
                 return k + 1
         return n
+
+    def _call_kernel(self, n: int) -> int:
+        """Run the compiled loop for ``n`` ticks (0: just make sure it is compiled)."""
+        w = self.world
+        return int(self._kernel(
+            int(n), int(w.tick), self.cfg, self.grid, w.pos, w.heading, w.motor, w.led,
+            w.alive, w.present, w.speed, w.turn_rate, w.tx_phase, w.out_on, w.out_type,
+            w.out_data, w.in_count, w.in_type, w.in_data, w.in_dist, w.counters,
+            self._dirty, self._dirty_flag, self._spare, self.rng_motion, self.rng_radio,
+            self.rng_controller, self.controller.mem,
+        ))
 
     def _slow_tick(self) -> None:
         """One tick with a Python controller: the same phases as the compiled loop."""
