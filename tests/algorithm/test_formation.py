@@ -1,0 +1,59 @@
+"""Real ET formations on the simulator: small shapes, several seeds, loss 0.2."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from etswarm.algorithm.run import ETRun, RunConfig
+from etswarm.algorithm.states import State
+from etswarm.measures.formation import duplicate_tags, min_pair_distance
+
+
+def run_formation(shape: str, seed: int, max_time_s: float = 3600.0) -> ETRun:
+    run = ETRun(RunConfig(shape=shape, seed=seed, max_time_s=max_time_s))
+    run.run()
+    return run
+
+
+@pytest.mark.parametrize("seed", [0, 1, 2])
+def test_triangle_forms_at_loss_02(seed: int) -> None:
+    run = run_formation("triangle", seed)
+    summary = run.summary()
+    assert summary["formed"], summary["states"]
+    assert summary["jaccard"] == 1.0
+    assert summary["duplicate_tags"] == []
+    assert summary["formation_time_s"] is not None
+    assert summary["formation_time_s"] < 3600
+    # Every target cell is held by exactly one Stable robot.
+    stable = run.controller.states == State.STABLE
+    held = {tuple(t) for t in run.controller.tags[stable].tolist()}
+    assert held == {tuple(c) for c in run.target.tolist()}
+    # Bodies never overlap beyond the collision tolerance.
+    present = run.world.present
+    assert min_pair_distance(run.world.pos, present) > 2 * 16.5 - 1.0
+
+
+def test_same_seed_same_run() -> None:
+    a = ETRun(RunConfig(shape="triangle", seed=5, max_time_s=600))
+    b = ETRun(RunConfig(shape="triangle", seed=5, max_time_s=600))
+    sa, sb = a.run(), b.run()
+    assert np.array_equal(a.world.pos, b.world.pos)
+    assert np.array_equal(a.controller.ri, b.controller.ri)
+    for key in ("formed", "formation_time_s", "jaccard", "states", "placement_error_mm"):
+        assert sa[key] == sb[key]
+
+
+def test_extra_robots_stay_queued() -> None:
+    run = ETRun(RunConfig(shape="triangle", robots=18, seed=1, max_time_s=3600))
+    summary = run.run()
+    assert summary["formed"], summary["states"]
+    assert summary["states"]["Queued"] == 3
+    assert duplicate_tags(run.controller.tags, run.controller.states >= State.INACTIVE) == []
+
+
+def test_fewer_robots_than_cells_says_so() -> None:
+    run = ETRun(RunConfig(shape="triangle", robots=10, seed=0, max_time_s=60))
+    assert any("cannot be completed" in note for note in run.notes)
+    fitted = ETRun(RunConfig(shape="triangle", robots=10, seed=0, max_time_s=60, fit=True))
+    assert len(fitted.target) == 10
