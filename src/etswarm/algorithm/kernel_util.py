@@ -1,0 +1,95 @@
+"""Constants and small compiled helpers shared by the ET controller's rules."""
+
+from __future__ import annotations
+
+import math
+
+from numba import njit
+
+from etswarm.algorithm.memory import (
+    R_SINCE,
+    R_STATE,
+)
+from etswarm.algorithm.params import (
+    C_GENE_X0,
+    C_GENE_Y0,
+)
+
+# State codes (mirror of states.State; numba needs plain ints).
+QUEUED = 0
+SEARCH = 1
+INACTIVE = 2
+ACTIVE = 3
+QUASI = 4
+STABLE = 5
+DANGER = 6
+LEADER = 7
+
+# Motor commands (simulator contract).
+STOP = 0
+FORWARD = 1
+LEFT = 2
+RIGHT = 3
+
+HALF_SQRT3 = 0.8660254037844386
+FAR = 1.0e9
+
+# The six lattice directions in cyclic order (DESIGN §1).
+DIR_X = (0, 1, 1, 0, -1, -1)
+DIR_Y = (1, 1, 0, -1, -1, 0)
+
+
+@njit(cache=True, inline="always")
+def is_placed(state):  # type: ignore[no-untyped-def]
+    """True for the states that hold a lattice tag."""
+    return state >= INACTIVE
+
+
+@njit(cache=True, inline="always")
+def direction_index(dx, dy):  # type: ignore[no-untyped-def]
+    """Index 0..5 of the lattice direction (dx, dy), or -1 if not a neighbour offset."""
+    if dx == 0 and dy == 1:
+        return 0
+    if dx == 1 and dy == 1:
+        return 1
+    if dx == 1 and dy == 0:
+        return 2
+    if dx == 0 and dy == -1:
+        return 3
+    if dx == -1 and dy == -1:
+        return 4
+    if dx == -1 and dy == 0:
+        return 5
+    return -1
+
+
+@njit(cache=True, inline="always")
+def lattice_distance(ax, ay, bx, by):  # type: ignore[no-untyped-def]
+    """Distance between tags (ax, ay) and (bx, by) in lattice spacings."""
+    dy = ay - by
+    dx = (ax - bx) - 0.5 * dy
+    return math.sqrt(dx * dx + (dy * HALF_SQRT3) ** 2)
+
+
+@njit(cache=True, inline="always")
+def gene_flag_at(gene_flag, ci, x, y):  # type: ignore[no-untyped-def]
+    gx = x - ci[C_GENE_X0]
+    gy = y - ci[C_GENE_Y0]
+    if gx < 0 or gy < 0 or gx >= gene_flag.shape[0] or gy >= gene_flag.shape[1]:
+        return 0
+    return gene_flag[gx, gy]
+
+
+@njit(cache=True, inline="always")
+def gene_nn_at(gene_nn, ci, x, y):  # type: ignore[no-untyped-def]
+    gx = x - ci[C_GENE_X0]
+    gy = y - ci[C_GENE_Y0]
+    if gx < 0 or gy < 0 or gx >= gene_nn.shape[0] or gy >= gene_nn.shape[1]:
+        return 0
+    return gene_nn[gx, gy]
+
+
+@njit(cache=True)
+def set_state(i, ri, state, tick):  # type: ignore[no-untyped-def]
+    ri[i, R_STATE] = state
+    ri[i, R_SINCE] = tick

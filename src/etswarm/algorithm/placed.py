@@ -1,0 +1,110 @@
+"""Placed robots: Inactive -> Active -> Quasi/Stable, Stable -> Danger (paper Table 1)."""
+
+from __future__ import annotations
+
+from numba import njit
+
+from etswarm.algorithm.kernel_util import (
+    ACTIVE,
+    DANGER,
+    INACTIVE,
+    QUASI,
+    STABLE,
+    direction_index,
+    is_placed,
+    set_state,
+)
+from etswarm.algorithm.memory import (
+    NB_ID,
+    NB_LAST,
+    NB_PREV,
+    NB_STATE,
+    NB_TS,
+    NB_TX,
+    NB_TY,
+    R_BELOW_SINCE,
+    R_COUNT,
+    R_MASK,
+    R_NN,
+    R_QUASI_UNTIL,
+    R_SINCE,
+    R_STATE,
+    R_TAG_X,
+    R_TAG_Y,
+    R_TS,
+)
+from etswarm.algorithm.params import (
+    C_TICKS_DANGER,
+    C_TICKS_NB_FRESH,
+    C_TICKS_QUASI,
+    F_NB_RADIUS,
+)
+
+#: Inactive robots with no Active neighbour for this many evaluations become Active.
+INACTIVE_PATIENCE_TICKS = 31 * 60
+
+
+@njit(cache=True)
+def placed_rule(i, tick, ri, nb, nb_dist, ci, cf):  # type: ignore[no-untyped-def]
+    """Inactive -> Active -> Quasi/Stable, and Stable -> Danger (paper Table 1)."""
+    fresh = ci[C_TICKS_NB_FRESH]
+    radius = cf[F_NB_RADIUS]
+    x = ri[i, R_TAG_X]
+    y = ri[i, R_TAG_Y]
+    ts = ri[i, R_TS]
+    state = ri[i, R_STATE]
+    slots = nb.shape[1]
+    seen_dirs = 0
+    witnessed_stable = False
+    lower_active = False
+    any_active = False
+    for m in range(slots):
+        if nb[i, m, NB_ID] < 0:
+            continue
+        st = nb[i, m, NB_STATE]
+        if not is_placed(st):
+            continue
+        k = direction_index(nb[i, m, NB_TX] - x, nb[i, m, NB_TY] - y)
+        if k < 0:
+            continue
+        if st == STABLE and nb[i, m, NB_PREV] == ACTIVE:
+            witnessed_stable = True
+        if tick - nb[i, m, NB_LAST] > fresh or nb_dist[i, m] > radius:
+            continue
+        seen_dirs |= 1 << k
+        if st == ACTIVE:
+            any_active = True
+            if nb[i, m, NB_TS] < ts:
+                lower_active = True
+    count = 0
+    for k in range(6):
+        if seen_dirs & (1 << k):
+            count += 1
+    ri[i, R_COUNT] = count
+    ri[i, R_MASK] = seen_dirs
+    nn = ri[i, R_NN]
+
+    if state == INACTIVE:
+        if witnessed_stable:
+            set_state(i, ri, ACTIVE, tick)
+        elif any_active:
+            ri[i, R_SINCE] = tick
+        elif tick - ri[i, R_SINCE] > INACTIVE_PATIENCE_TICKS:
+            set_state(i, ri, ACTIVE, tick)
+    elif state == ACTIVE:
+        if count >= nn:
+            set_state(i, ri, STABLE, tick)
+            ri[i, R_BELOW_SINCE] = -1
+        elif lower_active:
+            set_state(i, ri, QUASI, tick)
+            ri[i, R_QUASI_UNTIL] = tick + ci[C_TICKS_QUASI]
+    elif state == QUASI:
+        if tick >= ri[i, R_QUASI_UNTIL]:
+            set_state(i, ri, ACTIVE, tick)
+    elif state == STABLE:
+        if count >= nn:
+            ri[i, R_BELOW_SINCE] = -1
+        elif ri[i, R_BELOW_SINCE] < 0:
+            ri[i, R_BELOW_SINCE] = tick
+        elif tick - ri[i, R_BELOW_SINCE] >= ci[C_TICKS_DANGER]:
+            set_state(i, ri, DANGER, tick)
