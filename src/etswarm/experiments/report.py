@@ -142,7 +142,7 @@ def plot_formation_time(ok: pd.DataFrame, swept: Sequence[str], path: Path) -> P
         span = (xs.max() - xs.min()) if xs.size > 1 else 1.0
         jitter = rng.uniform(-0.01, 0.01, size=x.size) * span
         points = ax.scatter(x + jitter, t, s=12, alpha=0.4)
-        colour = points.get_facecolor()[0]
+        colour = tuple(points.get_facecolor()[0][:3])  # opaque line, translucent dots
         q1, med, q3 = (np.array([np.percentile(t[x == v], q) for v in xs]) for q in (25, 50, 75))
         ax.plot(xs, med, "-o", color=colour, label=label or "median", markersize=4)
         ax.fill_between(xs, q1, q3, color=colour, alpha=0.15)
@@ -288,6 +288,8 @@ def summary_table(frame: pd.DataFrame, swept: Sequence[str]) -> pd.DataFrame:
             ("census_error_mean", "median census error", lambda v: f"{v:+.1f}"),
             ("wall_time_s", "median wall time", format_duration),
         ):
+            if column == "reform_time_s" and not _has_damage(frame):
+                continue  # without damage it only repeats the formation time
             always = column == "formation_time_s"  # "-" says no run formed
             if column in ok.columns and (always or np.isfinite(numbers(frame[column])).any()):
                 values = numbers(ok[column])
