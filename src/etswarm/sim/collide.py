@@ -1,8 +1,15 @@
 """Phase 4 of a tick: collisions. Bodies are discs of radius r; no two present robots
 may overlap.
 
-Only robots on the work list (those that moved this tick, were pushed, or were edited
-from outside) are examined, so a still swarm costs nothing here. Each pass takes every
+Only robots on the work list are examined: robots that were pushed or edited from
+outside, and robots that moved further than their budget. Budgets keep this exact: for
+every pair of robots, budget_i + budget_j <= (centre distance - 2r), and no budget
+exceeds margin/2 (the grid's slack). Travelling d mm costs d mm of budget and cannot
+shrink a distance by more, so two robots with budget left cannot touch. An examined robot
+that does not move gets budget min(margin/2, min_j gap_j/2) over its neighbours j
+within 2r + margin, whose budgets are lowered to gap_j/2 where needed; a pushed robot
+gets budget 0. A still swarm costs nothing here, and a robot in open space is examined
+only every few ticks. Each pass takes every
 listed robot i, finds the present robots j with centre distance < 2r - SLOP (cell-list
 query of radius 2r) and pushes the pair apart along the centre line, half the overlap
 each, so they stand 2r apart; walls clamp afterwards. Every robot that a pass moved goes
@@ -40,7 +47,8 @@ def collide_phase(cfg, grid, pos, present, dirty, dirty_flag, n_dirty, spare, co
 
     ``dirty_flag`` (N,) uint8 marks listed slots; ``spare`` is a second (N,) int32 work
     array. Works in slot order (robots that are near each other are near in memory) and
-    writes every displacement to ``pos`` too. On return the work list is empty, all
+    writes every displacement to ``pos`` too; a long work list is processed in slot
+    order, so consecutive examinations touch the same cells. On return the work list is empty, all
     flags are cleared and the grid is valid.
     """
     r = cfg.radius
@@ -49,7 +57,14 @@ def collide_phase(cfg, grid, pos, present, dirty, dirty_flag, n_dirty, spare, co
     walls = cfg.arena > 0.0
     arena = cfg.arena
     start, sx, sy, sidx, sbx, sby = grid.start, grid.sx, grid.sy, grid.sidx, grid.sbx, grid.sby
-    reach = contact + grid.geom[G_MARGIN]
+    # robots filed up to `margin` away from their cell: a query of contact + 2 margin
+    # finds every robot within contact + margin, the range that budgets depend on
+    margin = grid.geom[G_MARGIN]
+    reach = contact + 2.0 * margin
+    near2 = (contact + margin) * (contact + margin)
+    half_margin = 0.5 * margin
+    budget = grid.budget
+    n_slots = dirty_flag.shape[0]
     cur = dirty
     nxt_list = spare
     n_cur = n_dirty
@@ -68,8 +83,17 @@ def collide_phase(cfg, grid, pos, present, dirty, dirty_flag, n_dirty, spare, co
         oy = grid.geom[G_OY]
         nx = grid.dims[0]
         ny = grid.dims[1]
-        for k in range(n_cur):
-            dirty_flag[cur[k]] = 0
+        if 8 * n_cur > n_slots:
+            # a long list: take it in slot order (neighbours in memory) by scanning flags
+            n_cur = 0
+            for a in range(n_slots):
+                if dirty_flag[a] != 0:
+                    dirty_flag[a] = 0
+                    cur[n_cur] = a
+                    n_cur += 1
+        else:
+            for k in range(n_cur):
+                dirty_flag[cur[k]] = 0
         n_next = 0
         examined += n_cur
         for k in range(n_cur):
@@ -77,6 +101,7 @@ def collide_phase(cfg, grid, pos, present, dirty, dirty_flag, n_dirty, spare, co
             xi = sx[a]
             yi = sy[a]
             moved_i = False
+            own = half_margin
             cx0, cx1 = cell_range(xi, reach, ox, inv, nx)
             cy0, cy1 = cell_range(yi, reach, oy, inv, ny)
             for cy in range(cy0, cy1 + 1):
@@ -85,7 +110,19 @@ def collide_phase(cfg, grid, pos, present, dirty, dirty_flag, n_dirty, spare, co
                     dx = sx[s] - xi
                     dy = sy[s] - yi
                     d2 = dx * dx + dy * dy
-                    if d2 >= resolve2 or s == a:
+                    if d2 >= near2 or s == a:
+                        continue
+                    if d2 >= resolve2:
+                        # a neighbour, not overlapping: share the gap between budgets
+                        if not moved_i:
+                            share = 0.5 * (np.sqrt(d2) - contact)
+                            if share < 0.0:
+                                share = 0.0
+                            if share < own:
+                                own = share
+                            j = sidx[s]
+                            if budget[j] > share:
+                                budget[j] = share
                         continue
                     d = np.sqrt(d2)
                     if d > 1e-9:
@@ -110,6 +147,7 @@ def collide_phase(cfg, grid, pos, present, dirty, dirty_flag, n_dirty, spare, co
                     j = sidx[s]
                     pos[j, 0] = xj
                     pos[j, 1] = yj
+                    budget[j] = 0.0
                     bx = sbx[s]
                     by = sby[s]
                     if xj < bx or xj >= bx + span or yj < by or yj >= by + span:
@@ -120,10 +158,13 @@ def collide_phase(cfg, grid, pos, present, dirty, dirty_flag, n_dirty, spare, co
                         n_next += 1
                     moved_i = True
                     pushes += 1
-            if moved_i:
+            i = sidx[a]
+            if not moved_i:
+                budget[i] = own
+            else:
+                budget[i] = 0.0
                 sx[a] = xi
                 sy[a] = yi
-                i = sidx[a]
                 pos[i, 0] = xi
                 pos[i, 1] = yi
                 bx = sbx[a]
@@ -143,6 +184,7 @@ def collide_phase(cfg, grid, pos, present, dirty, dirty_flag, n_dirty, spare, co
         counters[5] += 1
         for k in range(n_cur):
             dirty_flag[cur[k]] = 0
+            budget[sidx[cur[k]]] = 0.0
     if stale:
         grid_rebuild(grid, pos, present)
     counters[4] += pushes

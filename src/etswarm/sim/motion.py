@@ -7,8 +7,9 @@ leg); turning right (motor 3) pivots clockwise about the rear-right leg at
 ``heading - leg_angle``. Optional noise while moving: a relative per-tick speed jitter
 N(0, speed_noise) and a heading jitter N(0, heading_noise) rad, from the motion stream.
 With walls the centre is kept inside [r, arena - r]^2. Dead or absent robots do not move.
-Every robot that moved is updated in the grid (rebuilt if one left its slack box) and
-appended to the collision work list.
+Every robot that moved is updated in the grid (rebuilt if one left its slack box); its
+travel is taken from its collision budget, and when that is used up it is appended to the
+collision work list.
 """
 
 from __future__ import annotations
@@ -42,6 +43,7 @@ def move_phase(cfg, grid, pos, heading, motor, alive, present, speed, turn_rate,
     walls = cfg.arena > 0.0
     two_pi = 2.0 * np.pi
     sx, sy, slot, sbx, sby = grid.sx, grid.sy, grid.slot, grid.sbx, grid.sby
+    budget = grid.budget
     span = grid.geom[G_CELL] + 2.0 * grid.geom[G_MARGIN]
     stale = False
     for i in range(pos.shape[0]):
@@ -56,6 +58,7 @@ def move_phase(cfg, grid, pos, heading, motor, alive, present, speed, turn_rate,
             x = pos[i, 0] + step * np.cos(h)
             y = pos[i, 1] + step * np.sin(h)
             h_new = h
+            travel = abs(step)
         else:
             dth = turn_rate[i] * dt
             if m == 2:
@@ -67,6 +70,7 @@ def move_phase(cfg, grid, pos, heading, motor, alive, present, speed, turn_rate,
             x = pos[i, 0] + r * (np.cos(a) - np.cos(a + dth))
             y = pos[i, 1] + r * (np.sin(a) - np.sin(a + dth))
             h_new = h + dth
+            travel = r * abs(dth)  # arc length >= chord
         if cfg.heading_noise > 0.0:
             h_new += cfg.heading_noise * rng.standard_normal()
         if h_new > np.pi:
@@ -86,7 +90,9 @@ def move_phase(cfg, grid, pos, heading, motor, alive, present, speed, turn_rate,
         by = sby[s]
         if x < bx or x >= bx + span or y < by or y >= by + span:
             stale = True
-        if dirty_flag[s] == 0:
+        b = budget[i] - travel
+        budget[i] = b
+        if b <= 0.0 and dirty_flag[s] == 0:
             dirty_flag[s] = 1
             dirty[n_dirty] = s
             n_dirty += 1

@@ -13,6 +13,8 @@ with copies of their positions; a row of neighbouring cells is one contiguous sl
 - ``slot``   (N,) int32: slot of each robot, -1 if not filed (absent)
 - ``sbx``, ``sby`` (N,) float64 mm: lower corner of the filed cell minus the margin,
   by slot (the robot's slack box is this corner plus cell + 2 margin)
+- ``budget`` (N,) float64 mm, by robot: how far the robot may still travel before the
+  collision phase must examine it (see :mod:`etswarm.sim.collide`)
 - ``geom``   (6,) float64: minimum cell, margin, cell, 1/cell, origin x, origin y (mm)
 - ``dims``   (2,) int64: nx, ny
 - ``state``  (2,) int64: [stale flag, number of rebuilds]
@@ -25,7 +27,8 @@ leaves its slack box; they rebuild before the next query. Robots that do not mov
 nothing, and a candidate check reads contiguous memory. Outside edits of ``pos`` are
 detected by comparing ``pos`` with the slot copies (:func:`grid_sync`).
 
-With ``cell = 4 r + 2 margin`` a contact query (radius 2 r) scans 2 rows of 2 cells.
+With ``cell = 4 r + 4 margin`` a collision query (radius 2 r + margin) scans 2 rows of
+2 cells.
 """
 
 from __future__ import annotations
@@ -46,6 +49,7 @@ class Grid(NamedTuple):
     slot: np.ndarray
     sbx: np.ndarray
     sby: np.ndarray
+    budget: np.ndarray
     geom: np.ndarray
     dims: np.ndarray
     state: np.ndarray
@@ -69,6 +73,7 @@ def make_grid(n_robots: int, cell_mm: float, margin_mm: float) -> Grid:
         slot=np.full(n_robots, -1, dtype=np.int32),
         sbx=np.zeros(n_robots),
         sby=np.zeros(n_robots),
+        budget=np.zeros(n_robots),
         geom=np.array([cell_mm, margin_mm, cell_mm, 1.0 / cell_mm, 0.0, 0.0]),
         dims=np.ones(2, dtype=np.int64),
         state=np.zeros(2, dtype=np.int64),
@@ -197,6 +202,7 @@ def grid_sync(grid, pos, present, dirty, dirty_flag, n_dirty):
         grid_rebuild(grid, pos, present)
         for i in range(n):
             if edited[i]:
+                grid.budget[i] = 0.0
                 s = grid.slot[i]
                 if dirty_flag[s] == 0:
                     dirty_flag[s] = 1

@@ -88,8 +88,8 @@ class Simulator:
         self.cfg = self.params.kernel_config()
         n = world.n
         r = self.params.body_radius_mm
-        margin = max(1.0, 0.15 * r)
-        self.grid: Grid = make_grid(n, 4.0 * r + 2.0 * margin, margin)
+        margin = max(1.0, 0.15 * r)  # grid slack; collision budgets are up to margin / 2
+        self.grid: Grid = make_grid(n, 4.0 * r + 4.0 * margin, margin)
         self._dirty = np.zeros(n, dtype=np.int32)
         self._dirty_flag = np.zeros(n, dtype=np.uint8)
         self._spare = np.zeros(n, dtype=np.int32)
