@@ -5,6 +5,7 @@ from __future__ import annotations
 from pathlib import Path
 
 import click
+import numpy as np
 
 from etswarm.errors import EtswarmError
 
@@ -213,3 +214,87 @@ def _report(result) -> None:  # type: ignore[no-untyped-def]
         click.echo(f"snapshot: {path}")
     for path in result.videos:
         click.echo(f"video: {path}")
+
+
+@click.command()
+@click.argument("run_dir", type=click.Path(path_type=Path))
+@click.option(
+    "--video",
+    type=click.Path(dir_okay=False, path_type=Path),
+    default=None,
+    help="Write the run to a video (.mp4/.gif) headless instead of opening a window.",
+)
+@click.option(
+    "--speed",
+    type=float,
+    default=None,
+    help="Simulated seconds per wall (or video) second. Default: one recorded frame per frame.",
+)
+@window_options
+def replay(
+    run_dir: Path,
+    video: Path | None,
+    speed: float | None,
+    size: str,
+    fps: float,
+    paused: bool,
+    out: Path,
+    frames: int | None,
+) -> None:
+    """Open a saved run (RUN_DIR with recording.npz) in the viewer, or write it to video."""
+    from etswarm.viewer.headless import frames_for
+    from etswarm.viewer.replay import ReplayRun
+    from etswarm.viewer.runfiles import load_run_dir
+
+    record = load_run_dir(run_dir)
+    window_size = _parse_size(size)
+    if speed is None:
+        step_s = float(np.median(np.diff(record.t_s))) if record.frames > 1 else 1.0
+        speed = max(step_s * (fps if fps > 0 else 30.0), 1e-3)
+    if speed <= 0:
+        raise EtswarmError(f"--speed must be > 0, got {speed}")
+    live = ReplayRun(record)
+    if video is not None:
+        if fps <= 0:
+            raise EtswarmError(f"--fps must be > 0 for a video, got {fps}")
+        total = frames_for(live, fps, speed, float(record.t_s[-1] - record.t_s[0]))
+        if frames is not None:
+            total = min(total, frames)
+        _write_video(live, video, fps, speed, total, window_size)
+        return
+    _check_display(frames)
+    from etswarm.viewer.window import run_viewer
+
+    result = run_viewer(
+        live,
+        size=window_size,
+        fps=fps,
+        speed=speed,
+        start_paused=paused,
+        output_dir=out,
+        caption=f"etswarm replay: {record.title}",
+        max_frames=frames,
+    )
+    _report(result)
+
+
+@click.command()
+@click.argument("run_dir", type=click.Path(path_type=Path))
+@click.option(
+    "--out",
+    type=click.Path(file_okay=False, path_type=Path),
+    default=None,
+    help="Folder for the PNGs (default: RUN_DIR).",
+)
+def plot(run_dir: Path, out: Path | None) -> None:
+    """Plot a saved run: robots per state over time, the formation/regeneration
+    timeline and, when recorded, neighbour-count errors."""
+    from etswarm.viewer.plots import plot_run
+    from etswarm.viewer.runfiles import find_recording, load_run_dir
+
+    record = load_run_dir(run_dir)
+    target = out if out is not None else find_recording(run_dir).parent
+    for path in plot_run(record, target):
+        click.echo(f"wrote {path}")
+    if record.nn is None:
+        click.echo("(no NN values in the recording: neighbour-count errors not plotted)")
