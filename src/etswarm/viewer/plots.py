@@ -228,10 +228,16 @@ def plot_neighbour_errors(record: RunRecord, path: str | Path) -> Path:
 
 
 def plot_run(record: RunRecord, out_dir: str | Path) -> list[Path]:
-    """Every plot the record allows, as PNGs in ``out_dir``; returns their paths."""
+    """Every plot the record allows, as PNGs in ``out_dir``; returns their paths.
+
+    Always ``states.png``; ``timeline.png`` when robots have ET states or there are
+    events; ``neighbour_errors.png`` when the record holds NN values and tags.
+    """
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
-    paths = [plot_states(record, out / "states.png"), plot_timeline(record, out / "timeline.png")]
+    paths = [plot_states(record, out / "states.png")]
+    if record.has_states() or record.events:
+        paths.append(plot_timeline(record, out / "timeline.png"))
     if record.nn is not None and record.has_tag is not None:
         paths.append(plot_neighbour_errors(record, out / "neighbour_errors.png"))
     return paths
