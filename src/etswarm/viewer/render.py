@@ -279,7 +279,7 @@ def _draw_labels(
     r_px = scene.body_radius_mm * view.zoom
     if r_px < view.label_min_radius_px:
         return
-    size = int(np.clip(r_px * 0.62, 13, 22))
+    size = int(np.clip(r_px * 0.72, 13, 24))
     ids = scene.robot_ids()
     shown = np.flatnonzero(scene.present & _visible(px, r_px, view))
     for i in shown.tolist():

@@ -13,6 +13,11 @@ import numpy as np
 
 from etswarm.viewer.scene import Scene
 
+#: Screen space kept free for overlays when fitting (pixels).
+LEGEND_RESERVE_PX = 140
+TITLE_RESERVE_PX = 30
+STATUS_RESERVE_PX = 50
+
 
 class Trails:
     """Recent positions of every robot, fed one scene at a time.
@@ -137,16 +142,31 @@ class ViewState:
         """Move the picture by (dx, dy) pixels (content follows the mouse)."""
         self.centre_mm = self.centre_mm + np.array([-dx / self.zoom, dy / self.zoom])
 
-    def fit(self, scene: Scene, margin: float = 0.08) -> None:
-        """Centre and zoom so every present robot and target site is in view."""
+    def fit(self, scene: Scene, margin: float = 0.04) -> None:
+        """Centre and zoom so every present robot and target site is in view, clear of
+        the legend (left), the title (top) and the status line (bottom) when shown."""
         pts = [scene.pos[scene.present], scene.target_sites]
         allpts = np.concatenate([p for p in pts if len(p)] or [np.zeros((1, 2))])
         lo = allpts.min(axis=0) - scene.body_radius_mm
         hi = allpts.max(axis=0) + scene.body_radius_mm
         span = np.maximum(hi - lo, 4 * scene.body_radius_mm)
-        usable = np.array([self.width, self.height]) * (1 - 2 * margin)
+        left = LEGEND_RESERVE_PX if self.show_legend else 0
+        top = TITLE_RESERVE_PX if scene.title else 0
+        bottom = STATUS_RESERVE_PX if self.show_status else 0
+        if self.width - left < 0.6 * self.width:
+            left = 0
+        if self.height - top - bottom < 0.6 * self.height:
+            top = bottom = 0
+        usable = np.array(
+            [
+                (self.width - left) * (1 - 2 * margin),
+                (self.height - top - bottom) * (1 - 2 * margin),
+            ]
+        )
         self.zoom = float(np.min(usable / span))
-        self.centre_mm = (lo + hi) / 2
+        mid = (lo + hi) / 2
+        dx, dy = left / 2, (top - bottom) / 2  # screen offset of the usable area's centre
+        self.centre_mm = np.array([mid[0] - dx / self.zoom, mid[1] + dy / self.zoom])
 
     @classmethod
     def fitted(
