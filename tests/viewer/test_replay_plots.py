@@ -85,3 +85,23 @@ def test_plot_run_writes_readable_pngs(record, tmp_path) -> None:
     # the stacked area holds the Stable colour
     rgb = np.asarray(Image.open(tmp_path / "states.png").convert("RGB")).reshape(-1, 3)
     assert ((rgb == (0, 158, 115)).all(axis=1)).sum() > 1000
+
+
+def test_replay_keys_step_back_and_restart(record) -> None:
+    import pygame
+
+    from etswarm.viewer.window import Viewer
+
+    run = ReplayRun(record)
+    run.seek(10)
+    viewer = Viewer(run, size=(320, 240), fps=0, start_paused=True)
+
+    def hook(v, k: int) -> None:
+        if k == 0:
+            pygame.event.post(pygame.event.Event(pygame.KEYDOWN, key=pygame.K_COMMA, mod=0))
+        elif k == 1:
+            assert run.frame == 9
+            pygame.event.post(pygame.event.Event(pygame.KEYDOWN, key=pygame.K_HOME, mod=0))
+
+    viewer.run(max_frames=3, frame_hook=hook)
+    assert run.frame == 0 and viewer.scene.sim_time_s == 0.0

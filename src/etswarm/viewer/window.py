@@ -1,6 +1,7 @@
 """The live viewer: a pygame window over any :class:`~etswarm.viewer.live.LiveRun`.
 
-Keys: space pause/resume · ``.`` step one simulated second (while paused) · ``+``/``-``
+Keys: space pause/resume · ``.`` step one simulated second (while paused) · replays
+only: ``,`` back one recorded frame, Home restart · ``+``/``-``
 speed ×2 / ÷2 · arrows pan · ``f`` fit · ``l`` links · ``t`` trails · ``n`` labels ·
 ``g`` legend · ``i`` status line · ``h`` help · ``r`` start/stop recording the window to
 an .mp4 · ``s`` PNG snapshot of the picture · ``q``/Esc quit.
@@ -50,6 +51,7 @@ HELP_LINES = (
     "click  inspect robot     drag  split along line",
     "shift+drag  remove rectangle     right-click  kill robot",
     "r  record video   s  snapshot PNG   h  help   q / Esc  quit",
+    "replay:  ,  back one frame    Home  restart",
 )
 
 
@@ -224,6 +226,12 @@ class Viewer:
             if not self.run_.finished:
                 self.run_.advance(int(self.run_.ticks_per_second))
                 self.scene = self.run_.scene()
+            self.paused = True
+        elif key in (pygame.K_COMMA, pygame.K_HOME) and callable(getattr(self.run_, "seek", None)):
+            # replays only: back one recorded frame (,) or to the start (Home)
+            frame = 0 if key == pygame.K_HOME else max(int(getattr(self.run_, "frame", 0)) - 1, 0)
+            self.run_.seek(frame)  # type: ignore[attr-defined]
+            self.scene = self.run_.scene()
             self.paused = True
         elif key in (pygame.K_PLUS, pygame.K_EQUALS, pygame.K_KP_PLUS):
             self.speed = min(self.speed * 2, 1e6)
