@@ -24,6 +24,13 @@ from etswarm.algorithm.kernel_util import (
     STOP,
 )
 from etswarm.algorithm.memory import (
+    NB_EEPOCH,
+    NB_EHOP,
+    NB_ELAST,
+    NB_ELEADER,
+    NB_EPARENT,
+    NB_EPOCH,
+    NB_ESUB,
     NB_FLOOR,
     NB_ID,
     NB_LAST,
@@ -35,56 +42,119 @@ from etswarm.algorithm.memory import (
     NB_TS,
     NB_TX,
     NB_TY,
+    PHASE_ELECTING,
+    PHASE_NORMAL,
+    R_ADOPTED_AT,
     R_EPOCH,
     R_FLOOR,
+    R_HOP,
+    R_LEADER,
     R_MASK,
+    R_PARENT,
+    R_PEND_EPOCH,
+    R_PEND_N,
+    R_PEND_TX,
+    R_PEND_TY,
+    R_PHASE,
     R_QMIN,
     R_RELEASED,
     R_STATE,
+    R_SUBCOUNT,
     R_TAG_X,
     R_TAG_Y,
     R_TS,
+    R_TSLOT,
+    SLOT_LIMIT,
 )
-from etswarm.algorithm.messages import MSG_STATUS
+from etswarm.algorithm.messages import EPOCH_SHIFT, KIND_MASK, MSG_ELECT, MSG_STATUS, MSG_TARGET
 from etswarm.algorithm.params import (
     C_EVAL_EVERY,
 )
 from etswarm.algorithm.placed import placed_rule
+from etswarm.algorithm.regeneration import (
+    TARGET_RELAY_TICKS,
+    announcement_rule,
+    election_rule,
+    start_election,
+)
 from etswarm.algorithm.release import queued_rule
 from etswarm.algorithm.search import search_rule
 
 
 @njit(cache=True)
-def ingest(i, k, tick, in_data, in_dist, nb, nb_dist):  # type: ignore[no-untyped-def]
-    """Store message k of robot i's inbox in its neighbour table (oldest slot recycled)."""
-    sender = int(in_data[i, k, 0]) | (int(in_data[i, k, 1]) << 8)
-    state = int(in_data[i, k, 2]) & 0x0F
-    slots = nb.shape[1]
-    slot = -1
+def table_slot(i, sender, nb):  # type: ignore[no-untyped-def]
+    """Index of ``sender``'s row in robot i's neighbour table; a new robot takes a free
+    row, else the one heard longest ago (returned negated minus one: -(row) - 1)."""
     free = -1
     oldest = -1
     oldest_tick = 1 << 62
-    for m in range(slots):
+    for m in range(nb.shape[1]):
         sid = nb[i, m, NB_ID]
         if sid == sender:
-            slot = m
-            break
+            return m
         if sid < 0:
             if free < 0:
                 free = m
         elif nb[i, m, NB_LAST] < oldest_tick:
             oldest_tick = nb[i, m, NB_LAST]
             oldest = m
-    if slot < 0:
-        slot = free if free >= 0 else oldest
-        nb[i, slot, NB_ID] = sender
-        nb[i, slot, NB_PREV] = -1
-        nb[i, slot, NB_STATE] = state
-    elif nb[i, slot, NB_STATE] != state:
-        nb[i, slot, NB_PREV] = nb[i, slot, NB_STATE]
-        nb[i, slot, NB_STATE] = state
+    row = free if free >= 0 else oldest
+    nb[i, row, NB_ID] = sender
+    nb[i, row, NB_PREV] = -1
+    nb[i, row, NB_STATE] = QUEUED
+    nb[i, row, NB_EEPOCH] = -1
+    return -row - 1
+
+
+@njit(cache=True, inline="always")
+def near_epoch(own, wrapped, modulus):  # type: ignore[no-untyped-def]
+    """The epoch nearest to ``own`` whose value mod ``modulus`` is ``wrapped``."""
+    delta = (wrapped - own) % modulus
+    if delta >= modulus // 2:
+        delta -= modulus
+    return own + delta
+
+
+@njit(cache=True)
+def ingest(i, k, tick, ri, in_type, in_data, in_dist, nb, nb_dist):  # type: ignore[no-untyped-def]
+    """Store message k of robot i's inbox in its neighbour table (layouts in ``messages``).
+
+    Returns the message kind. A target announcement is kept in R_PEND_* when it is newer
+    than the one kept.
+    """
+    kind = int(in_type[i, k]) & KIND_MASK
+    sender = int(in_data[i, k, 0]) | (int(in_data[i, k, 1]) << 8)
+    slot = table_slot(i, sender, nb)
+    created = slot < 0
+    if created:
+        slot = -slot - 1
     nb[i, slot, NB_LAST] = tick
     nb_dist[i, slot] = in_dist[i, k]
+    if kind == MSG_ELECT:
+        wrapped = int(in_type[i, k]) >> EPOCH_SHIFT
+        nb[i, slot, NB_EEPOCH] = near_epoch(ri[i, R_EPOCH] + 1, wrapped, 32)
+        nb[i, slot, NB_ELEADER] = int(in_data[i, k, 2]) | (int(in_data[i, k, 3]) << 8)
+        nb[i, slot, NB_EHOP] = int(in_data[i, k, 4])
+        parent = int(in_data[i, k, 5]) | (int(in_data[i, k, 6]) << 8)
+        nb[i, slot, NB_EPARENT] = -1 if parent == 0xFFFF else parent
+        nb[i, slot, NB_ESUB] = int(in_data[i, k, 7]) | (int(in_data[i, k, 8]) << 8)
+        nb[i, slot, NB_ELAST] = tick
+        return kind
+    if kind == MSG_TARGET:
+        epoch = near_epoch(ri[i, R_EPOCH] + 1, int(in_data[i, k, 2]), 256)
+        if epoch > ri[i, R_PEND_EPOCH]:
+            ri[i, R_PEND_EPOCH] = epoch
+            ri[i, R_PEND_N] = int(in_data[i, k, 3]) | (int(in_data[i, k, 4]) << 8)
+            tx = int(in_data[i, k, 5])
+            ty = int(in_data[i, k, 6])
+            ri[i, R_PEND_TX] = tx - 256 if tx >= 128 else tx
+            ri[i, R_PEND_TY] = ty - 256 if ty >= 128 else ty
+        return kind
+    state = int(in_data[i, k, 2]) & 0x0F
+    nb[i, slot, NB_EPOCH] = near_epoch(ri[i, R_EPOCH], int(in_type[i, k]) >> EPOCH_SHIFT, 32)
+    if not created and nb[i, slot, NB_STATE] != state:
+        nb[i, slot, NB_PREV] = nb[i, slot, NB_STATE]
+    nb[i, slot, NB_STATE] = state
     if state >= INACTIVE:
         tx = int(in_data[i, k, 3])
         ty = int(in_data[i, k, 4])
@@ -96,16 +166,42 @@ def ingest(i, k, tick, in_data, in_dist, nb, nb_dist):  # type: ignore[no-untype
         nb[i, slot, NB_QMIN] = int(in_data[i, k, 3]) | (int(in_data[i, k, 4]) << 8)
         nb[i, slot, NB_FLOOR] = (int(in_data[i, k, 5]) | (int(in_data[i, k, 6]) << 8)) - 1
         nb[i, slot, NB_RELEASED] = int(in_data[i, k, 7]) | (int(in_data[i, k, 8]) << 8)
+    return kind
 
 
 @njit(cache=True)
-def encode(i, ri, out_on, out_type, out_data):  # type: ignore[no-untyped-def]
-    """Write robot i's status message (layout in ``messages``)."""
-    state = ri[i, R_STATE]
+def encode(i, tick, ri, out_on, out_type, out_data):  # type: ignore[no-untyped-def]
+    """Write robot i's next broadcast (layouts in ``messages``): its election message while
+    electing; for a while after adopting a scaled target, every other period its
+    announcement; otherwise its status."""
     out_on[i] = True
-    out_type[i] = MSG_STATUS
     out_data[i, 0] = i & 0xFF
     out_data[i, 1] = (i >> 8) & 0xFF
+    if ri[i, R_PHASE] == PHASE_ELECTING:
+        epoch = ri[i, R_EPOCH] + 1
+        out_type[i] = MSG_ELECT | ((epoch & 31) << EPOCH_SHIFT)
+        out_data[i, 2] = ri[i, R_LEADER] & 0xFF
+        out_data[i, 3] = (ri[i, R_LEADER] >> 8) & 0xFF
+        out_data[i, 4] = min(ri[i, R_HOP], 255)
+        parent = ri[i, R_PARENT] if ri[i, R_PARENT] >= 0 else 0xFFFF
+        out_data[i, 5] = parent & 0xFF
+        out_data[i, 6] = (parent >> 8) & 0xFF
+        out_data[i, 7] = ri[i, R_SUBCOUNT] & 0xFF
+        out_data[i, 8] = (ri[i, R_SUBCOUNT] >> 8) & 0xFF
+        return
+    if ri[i, R_EPOCH] > 0 and tick - ri[i, R_ADOPTED_AT] < TARGET_RELAY_TICKS and (tick // 15) % 2:
+        slot_n = ri[i, R_PEND_N]
+        out_type[i] = MSG_TARGET
+        out_data[i, 2] = ri[i, R_EPOCH] & 0xFF
+        out_data[i, 3] = slot_n & 0xFF
+        out_data[i, 4] = (slot_n >> 8) & 0xFF
+        out_data[i, 5] = ri[i, R_PEND_TX] & 0xFF
+        out_data[i, 6] = ri[i, R_PEND_TY] & 0xFF
+        out_data[i, 7] = ri[i, R_LEADER] & 0xFF
+        out_data[i, 8] = (ri[i, R_LEADER] >> 8) & 0xFF
+        return
+    state = ri[i, R_STATE]
+    out_type[i] = MSG_STATUS | ((ri[i, R_EPOCH] & 31) << EPOCH_SHIFT)
     out_data[i, 2] = state
     if state >= INACTIVE:
         out_data[i, 3] = ri[i, R_TAG_X] & 0xFF
@@ -141,26 +237,45 @@ def et_step(  # type: ignore[no-untyped-def]
     rng,
 ):
     """One control tick for every robot (simulator fast-path contract)."""
-    _stop, ri, nb, nb_dist, gene_flag, gene_nn, ci, cf = mem
+    stop, ri, nb, nb_dist, gene_flag, gene_nn, slot_info, ci, cf = mem
     n = ri.shape[0]
     every = ci[C_EVAL_EVERY]
     for i in range(n):
         if not alive[i]:
             continue
         new_msgs = False
+        election_heard = False
         for k in range(in_count[i]):
-            if in_type[i, k] == MSG_STATUS:
-                ingest(i, k, tick, in_data, in_dist, nb, nb_dist)
+            kind = ingest(i, k, tick, ri, in_type, in_data, in_dist, nb, nb_dist)
+            if kind == MSG_STATUS:
                 new_msgs = True
+            elif kind == MSG_ELECT:
+                election_heard = True
+        if election_heard and ri[i, R_PHASE] == PHASE_NORMAL:
+            for m in range(nb.shape[1]):
+                if nb[i, m, NB_ID] >= 0 and nb[i, m, NB_EEPOCH] == ri[i, R_EPOCH] + 1:
+                    # Another robot of this remnant is electing: join in.
+                    start_election(i, tick, ri)
+                    motor[i] = STOP
+                    break
         state = ri[i, R_STATE]
+        slot = ri[i, R_TSLOT]
         due = (tick + i) % every == 0
-        if state == SEARCH:
-            search_rule(i, tick, new_msgs, ri, nb, nb_dist, motor, gene_flag, gene_nn, ci, cf)
+        if ri[i, R_PHASE] == PHASE_ELECTING:
+            motor[i] = STOP
+            if not due:
+                continue
+            if not announcement_rule(i, tick, ri, nb, gene_flag, gene_nn, slot_info, ci):
+                election_rule(i, tick, ri, nb, ci, stop)
+        elif state == SEARCH:
+            search_rule(
+                i, tick, new_msgs, ri, nb, nb_dist, motor, gene_flag[slot], gene_nn[slot], ci, cf
+            )
         elif not due:
             continue
         elif state == QUEUED:
             motor[i] = STOP
-            queued_rule(i, tick, ri, nb, ci)
+            queued_rule(i, tick, ri, nb, ci, slot_info[slot, SLOT_LIMIT])
         elif INACTIVE <= state <= STABLE:
             motor[i] = STOP
             placed_rule(i, tick, ri, nb, nb_dist, ci, cf)
@@ -169,4 +284,4 @@ def et_step(  # type: ignore[no-untyped-def]
         if ri[i, R_STATE] != SEARCH:
             motor[i] = STOP
         led[i] = ri[i, R_STATE]
-        encode(i, ri, out_on, out_type, out_data)
+        encode(i, tick, ri, out_on, out_type, out_data)

@@ -1,7 +1,10 @@
 """The ET controller packaged for the simulator: kernel, robot memory and the gene.
 
 ``ETController`` owns the arrays of every robot's private memory (see ``memory``) and the
-gene grids, and exposes them as the ``mem`` tuple the compiled ``et_step`` receives.
+gene grids, and exposes them as the ``mem`` tuple the compiled ``et_step`` receives. The
+host side of regeneration lives here too: a Leader's request for ``scale(bitmap, n)``
+is answered by storing the scaled gene in a target slot (the robots' on-board computation,
+memoised).
 """
 
 from __future__ import annotations
@@ -11,41 +14,41 @@ import numpy as np
 from etswarm.algorithm.controller import et_step
 from etswarm.algorithm.layout import Layout
 from etswarm.algorithm.memory import (
+    NB_ID,
+    NB_LAST,
+    NB_STATE,
+    NB_TX,
+    NB_TY,
     R_FLOOR_SINCE,
+    R_HAS_TAG,
+    R_NEWSLOT,
     R_NN,
     R_QMIN_SINCE,
+    R_REQUEST,
     R_SINCE,
     R_STATE,
     R_TAG_X,
     R_TAG_Y,
     R_TS,
+    SLOT_FIELDS,
     allocate,
 )
-from etswarm.algorithm.params import C_GENE_X0, C_GENE_Y0, ETParams
+from etswarm.algorithm.params import ETParams
 from etswarm.algorithm.states import State
 from etswarm.shapes.lattice import neighbour_counts
 
-
-def gene_grids(cells: np.ndarray) -> tuple[np.ndarray, np.ndarray, int, int]:
-    """Dense gene lookup for a cell set: ``(flag (GX, GY) uint8, nn (GX, GY) int8, x0, y0)``.
-
-    ``flag[X - x0, Y - y0]`` is 1 on the cells; ``nn`` counts each cell's neighbours among
-    the cells. The grid has a one-cell margin of zeros.
-    """
-    cells = np.asarray(cells, dtype=np.int64)
-    x0 = int(cells[:, 0].min()) - 1
-    y0 = int(cells[:, 1].min()) - 1
-    gx = int(cells[:, 0].max()) - x0 + 2
-    gy = int(cells[:, 1].max()) - y0 + 2
-    flag = np.zeros((gx, gy), dtype=np.uint8)
-    nn = np.zeros((gx, gy), dtype=np.int8)
-    flag[cells[:, 0] - x0, cells[:, 1] - y0] = 1
-    nn[cells[:, 0] - x0, cells[:, 1] - y0] = neighbour_counts(cells)
-    return flag, nn, x0, y0
+#: Target slots allocated at first (more are added when regenerations need them).
+INITIAL_SLOTS = 8
 
 
 class ETController:
-    """The ET controller in the simulator's fast-path form: ``step`` and ``mem``."""
+    """The ET controller in the simulator's fast-path form: ``step`` and ``mem``.
+
+    Holds every robot's private memory and the gene grids of the targets (slot 0: the
+    original shape; later slots: scaled shapes asked for by Leaders). The grids span the
+    original's tags with a margin of one shape size on every side, so a scaled shape can
+    be placed anywhere around the original frame.
+    """
 
     step = staticmethod(et_step)
 
@@ -54,21 +57,66 @@ class ETController:
         self.stop = np.zeros(1, dtype=np.int64)
         self.et = et
         self.ticks_per_s = ticks_per_s
-        self.set_target(target)
+        target = np.asarray(target, dtype=np.int64)
+        lo = target.min(axis=0)
+        hi = target.max(axis=0)
+        span = hi - lo + 1
+        self.x0 = int(lo[0] - span[0] - 1)
+        self.y0 = int(lo[1] - span[1] - 1)
+        self.grid_shape = (int(3 * span[0] + 2), int(3 * span[1] + 2))
+        self.gene_flag = np.zeros((INITIAL_SLOTS, *self.grid_shape), dtype=np.uint8)
+        self.gene_nn = np.zeros((INITIAL_SLOTS, *self.grid_shape), dtype=np.int8)
+        self.slot_info = np.zeros((INITIAL_SLOTS, SLOT_FIELDS), dtype=np.int64)
+        self.slot_cells: list[np.ndarray] = []
+        self.ci, self.cf = et.pack(ticks_per_s, 0, self.x0, self.y0, diameter_hops=int(span.sum()))
+        self.add_target(target, release_limit=max(0, len(target) - 3), tx=0, ty=0)
 
-    def set_target(self, target: np.ndarray) -> None:
-        """Load the gene of ``target`` ((P, 2) tags) into every robot."""
-        self.target = np.asarray(target, dtype=np.int64)
-        flag, nn, x0, y0 = gene_grids(self.target)
-        self.gene_flag, self.gene_nn = flag, nn
-        release_limit = max(0, len(self.target) - 3)
-        self.ci, self.cf = self.et.pack(self.ticks_per_s, release_limit, x0, y0)
+    # -- targets -----------------------------------------------------------------------
+    def fits(self, cells: np.ndarray) -> bool:
+        """True when every tag of ``cells`` lies inside the gene grids."""
+        gx = cells[:, 0] - self.x0
+        gy = cells[:, 1] - self.y0
+        return bool(
+            np.all((gx >= 0) & (gy >= 0) & (gx < self.grid_shape[0]) & (gy < self.grid_shape[1]))
+        )
+
+    def add_target(self, cells: np.ndarray, release_limit: int, tx: int, ty: int) -> int:
+        """Store the gene of ``cells`` ((P, 2) tags) in a new slot; return the slot."""
+        slot = len(self.slot_cells)
+        if slot == self.slot_info.shape[0]:
+            grow = self.slot_info.shape[0]
+            self.gene_flag = np.concatenate([self.gene_flag, np.zeros_like(self.gene_flag)])
+            self.gene_nn = np.concatenate([self.gene_nn, np.zeros_like(self.gene_nn)])
+            self.slot_info = np.concatenate(
+                [self.slot_info, np.zeros((grow, SLOT_FIELDS), dtype=np.int64)]
+            )
+        cells = np.asarray(cells, dtype=np.int64).reshape(-1, 2)
+        if len(cells):
+            gx = cells[:, 0] - self.x0
+            gy = cells[:, 1] - self.y0
+            self.gene_flag[slot, gx, gy] = 1
+            self.gene_nn[slot, gx, gy] = neighbour_counts(cells)
+        self.slot_info[slot] = (len(cells), release_limit, tx, ty, 1)
+        self.slot_cells.append(cells)
+        return slot
+
+    @property
+    def target(self) -> np.ndarray:
+        """(P, 2) tags of the original target (slot 0)."""
+        return self.slot_cells[0]
 
     @property
     def mem(self) -> tuple:
         return (
-            self.stop, self.ri, self.nb, self.nb_dist, self.gene_flag, self.gene_nn,
-            self.ci, self.cf,
+            self.stop,
+            self.ri,
+            self.nb,
+            self.nb_dist,
+            self.gene_flag,
+            self.gene_nn,
+            self.slot_info,
+            self.ci,
+            self.cf,
         )
 
     def seed(self, layout: Layout) -> None:
@@ -81,9 +129,11 @@ class ETController:
             ri[rid, R_TS] = 1 if k == 0 else 2
             ri[rid, R_TAG_X] = x
             ri[rid, R_TAG_Y] = y
-            ri[rid, R_NN] = self.gene_nn[x - self.ci[C_GENE_X0], y - self.ci[C_GENE_Y0]]
+            ri[rid, R_NN] = self.gene_nn[0, x - self.x0, y - self.y0]
+            ri[rid, R_HAS_TAG] = 1
             ri[rid, R_SINCE] = 0
 
+    # -- what robots report ----------------------------------------------------------------
     @property
     def states(self) -> np.ndarray:
         """(N,) int64 state codes."""
@@ -93,3 +143,27 @@ class ETController:
     def tags(self) -> np.ndarray:
         """(N, 2) int64 tags (meaningful where the robot is placed)."""
         return self.ri[:, [R_TAG_X, R_TAG_Y]]
+
+    def pending_requests(self) -> np.ndarray:
+        """IDs of Leaders waiting for their scaled target (R_REQUEST == 1)."""
+        return np.flatnonzero(self.ri[:, R_REQUEST] == 1)
+
+    def known_tags(self, i: int, since_tick: int) -> set[tuple[int, int]]:
+        """Tags robot ``i`` knows to be held: its own and those of the placed robots in its
+        table heard since ``since_tick``."""
+        known = {(int(self.ri[i, R_TAG_X]), int(self.ri[i, R_TAG_Y]))}
+        for row in self.nb[i]:
+            if row[NB_ID] >= 0 and row[NB_STATE] >= State.INACTIVE and row[NB_LAST] >= since_tick:
+                known.add((int(row[NB_TX]), int(row[NB_TY])))
+        return known
+
+    def answer(self, leader: int, cells: np.ndarray, n: int, tx: int, ty: int) -> int:
+        """Give Leader ``leader`` its scaled target (``cells`` already translated)."""
+        from etswarm.algorithm.regeneration import find_slot
+
+        slot = find_slot(self.slot_info, n, tx, ty) if len(self.slot_cells) > 1 else -1
+        if slot < 0:
+            slot = self.add_target(cells, release_limit=len(cells), tx=tx, ty=ty)
+        self.ri[leader, R_NEWSLOT] = slot
+        self.ri[leader, R_REQUEST] = 2
+        return slot

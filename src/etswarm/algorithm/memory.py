@@ -5,14 +5,18 @@ A robot's memory is one row of ``ri`` (int64 fields) plus its neighbour table, o
 memory only; the controller never reads another robot's row.
 
 ``mem`` passed to the simulator is the tuple
-``(stop, ri, nb, nb_dist, gene_flag, gene_nn, ci, cf)``:
+``(stop, ri, nb, nb_dist, gene_flag, gene_nn, slot_info, ci, cf)``:
 
 - ``stop``       (1,) int64: nonzero asks the simulator to end the chunk (host work needed)
 - ``ri``         (N, R_FIELDS) int64: the fields ``R_*`` below
 - ``nb``         (N, M, NB_FIELDS) int64: neighbour table, fields ``NB_*``; NB_ID -1 = empty
 - ``nb_dist``    (N, M) float64: last distance estimate to that neighbour, mm
-- ``gene_flag``  (GX, GY) uint8 and ``gene_nn`` (GX, GY) int8: the gene as dense grids,
-  indexed by (X - ci[C_GENE_X0], Y - ci[C_GENE_Y0]); outside the grid means flag 0
+- ``gene_flag``  (S, GX, GY) uint8 and ``gene_nn`` (S, GX, GY) int8: the genes of up to S
+  targets (slot 0: the original shape; later slots: scaled shapes made by regeneration) as
+  dense grids indexed by (X - ci[C_GENE_X0], Y - ci[C_GENE_Y0]); outside means flag 0
+- ``slot_info``  (S, SLOT_FIELDS) int64: per target slot its cell count, release limit and
+  translation; a robot that hears of a scaled target (n, tx, ty) finds its slot here (the
+  slots memoise ``scale``, which every robot could compute on board from n alone)
 - ``ci``, ``cf``: packed constants (see ``params``)
 """
 
@@ -41,7 +45,6 @@ R_CAND_Y = 14
 R_COOLDOWN = 15  # tick until which site candidates are ignored
 R_YIELD_SINCE = 16  # tick yielding began (-1: not yielding)
 R_COUNT = 17  # placed lattice neighbours heard (last evaluation)
-R_MASK = 29  # bit k set: a robot holds the neighbour site in direction k (last evaluation)
 R_BELOW_SINCE = 18  # tick the count fell below NN while Stable (-1: not below)
 R_QUASI_UNTIL = 19
 R_EPOCH = 20  # target epoch (bumped by regeneration)
@@ -53,7 +56,30 @@ R_REF_ID = 21
 R_REF_TREND = 24
 R_YLD_ID = 25
 R_YLD_TREND = 28
-R_FIELDS = 30
+R_MASK = 29  # bit k set: a robot holds the neighbour site in direction k (last evaluation)
+# Regeneration (paper Algorithm 2).
+R_TSLOT = 30  # slot of the current target's gene (see ``slot_info``)
+R_HAS_TAG = 31  # 1 while the robot holds a tag (kept through the election)
+R_PHASE = 32  # PHASE_*
+R_LEADER = 33  # lowest ID heard in the election
+R_HOP = 34  # hops from that robot (spanning tree depth)
+R_PARENT = 35  # neighbour one hop nearer to it (-1: none)
+R_SUBCOUNT = 36  # robots in this robot's subtree (census by convergecast)
+R_ELECT_SINCE = 37  # tick the election began here
+R_BEST_SINCE = 38  # tick (leader, hop) last changed
+R_COUNT_SINCE = 39  # tick the subtree count last changed
+R_REQUEST = 40  # leader's request to compute the scaled gene: 0 none, 1 asked, 2 answered
+R_CENSUS = 41  # robots counted by the census (leader)
+R_NEWSLOT = 42  # answer: slot of the scaled target
+R_ADOPTED_AT = 43  # tick the current target was adopted (it is relayed for a while)
+R_PEND_EPOCH = 44  # newest target announcement heard: epoch (-1: none), n, tx, ty
+R_PEND_N = 45
+R_PEND_TX = 46
+R_PEND_TY = 47
+R_FIELDS = 48
+
+PHASE_NORMAL = 0
+PHASE_ELECTING = 1
 
 SUB_FOLLOW = 0
 SUB_SETTLE = 1
@@ -70,7 +96,21 @@ NB_QMIN = 7
 NB_FLOOR = 8
 NB_RELEASED = 9
 NB_MASK = 10  # a placed robot's neighbour-occupancy bits
-NB_FIELDS = 11
+NB_EEPOCH = 11  # election: epoch being elected for (-1: no election message heard)
+NB_ELEADER = 12  # election: lowest ID it has heard
+NB_EHOP = 13  # election: its hops from that robot
+NB_EPARENT = 14  # election: its parent
+NB_ESUB = 15  # election: its subtree count
+NB_ELAST = 16  # tick of its last election message
+NB_EPOCH = 17  # a placed robot's target epoch (mod 256) from its status
+NB_FIELDS = 18
+
+SLOT_N = 0  # cells of the target
+SLOT_LIMIT = 1  # robots the repository releases for it
+SLOT_TX = 2  # translation of scale(bitmap, n) (tags)
+SLOT_TY = 3
+SLOT_USED = 4  # 1 when the slot holds a target
+SLOT_FIELDS = 5
 
 #: Neighbour-table slots per robot (a lattice site has 6 neighbours and 6 at ~1.73 d).
 NB_SLOTS = 16
@@ -90,8 +130,11 @@ def allocate(n_robots: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     ri[:, R_BELOW_SINCE] = -1
     ri[:, R_REF_ID] = -1
     ri[:, R_YLD_ID] = -1
+    ri[:, R_PARENT] = -1
+    ri[:, R_PEND_EPOCH] = -1
     nb = np.zeros((n_robots, NB_SLOTS, NB_FIELDS), dtype=np.int64)
     nb[:, :, NB_ID] = -1
     nb[:, :, NB_PREV] = -1
+    nb[:, :, NB_EEPOCH] = -1
     nb_dist = np.zeros((n_robots, NB_SLOTS), dtype=np.float64)
     return ri, nb, nb_dist

@@ -18,6 +18,12 @@ byte   placed robot (Inactive ..   Queued / Search robot
 8      target epoch (uint8)        robots released so far, high byte
 =====  ==========================  ==============================================
 
+Election message (kind 2; Danger and Leader robots): bytes 0-1 robot ID, 2-3 lowest ID
+heard (the leader candidate), 4 hops from it, 5-6 parent ID (0xFFFF: none), 7-8 robots
+in this robot's subtree. Target message (kind 3; relayed for a while after a scaled target
+is adopted): 0-1 robot ID, 2 epoch, 3-4 n (cells of scale(bitmap, n)), 5 tx, 6 ty (int8
+translation, tags), 7-8 leader ID.
+
 The *release floor* is the ID of the last robot released from the repository: all
 Queued robots with an ID at or below it have left. ``messages`` holds only constants and
 numba helpers so the controller can encode and decode without allocation.
@@ -27,8 +33,13 @@ from __future__ import annotations
 
 from numba import njit
 
-#: kilolib message type used for ET status broadcasts.
+#: Message kinds, in the low 3 bits of the kilolib type byte; the high 5 bits carry the
+#: target epoch (mod 32) the message belongs to (for an election: the epoch elected for).
 MSG_STATUS = 1
+MSG_ELECT = 2
+MSG_TARGET = 3
+KIND_MASK = 0x07
+EPOCH_SHIFT = 3
 
 PAYLOAD_BYTES = 9
 

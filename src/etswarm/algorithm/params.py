@@ -26,7 +26,8 @@ C_GENE_X0 = 10  # tag X of gene grid column 0
 C_GENE_Y0 = 11  # tag Y of gene grid row 0
 C_EVAL_EVERY = 12  # placed robots re-evaluate their state every this many ticks
 C_TICKS_CLEAR = 13  # a Queued robot leaves only after hearing no searcher this long
-N_CI = 14
+C_TICKS_REGEN_QUIET = 14  # election/census quiet time before a robot declares itself Leader
+N_CI = 15
 
 F_SPACING = 0  # lattice spacing d
 F_NB_RADIUS = 1  # a placed robot nearer than this is a lattice neighbour
@@ -70,6 +71,9 @@ class ETParams:
     balance_tol_mm: float = 8.0
     yield_distance_mm: float = 60.0
     eval_every_ticks: int = 4
+    #: Per hop of the shape's diameter: the election waits this long without change.
+    election_quiet_per_hop_s: float = 1.5
+    election_quiet_min_s: float = 20.0
 
     def __post_init__(self) -> None:
         for f in fields(self):
@@ -86,9 +90,15 @@ class ETParams:
             )
 
     def pack(
-        self, ticks_per_s: int, release_limit: int, gene_x0: int, gene_y0: int
+        self, ticks_per_s: int, release_limit: int, gene_x0: int, gene_y0: int,
+        diameter_hops: int = 10,
     ) -> tuple[np.ndarray, np.ndarray]:
-        """Return ``(ci, cf)``: int64 (N_CI,) and float64 (N_CF,) arrays for the kernel."""
+        """Return ``(ci, cf)``: int64 (N_CI,) and float64 (N_CF,) arrays for the kernel.
+
+        ``diameter_hops`` bounds the hops across any remnant (the shape's extent); the
+        election's quiet time grows with it so a Leader is declared only after the lowest
+        ID had time to cross the remnant at the configured loss.
+        """
 
         def ticks(seconds: float) -> int:
             return max(1, round(seconds * ticks_per_s))
@@ -108,6 +118,9 @@ class ETParams:
         ci[C_GENE_Y0] = gene_y0
         ci[C_EVAL_EVERY] = self.eval_every_ticks
         ci[C_TICKS_CLEAR] = ticks(self.release_clear_s)
+        ci[C_TICKS_REGEN_QUIET] = ticks(
+            max(self.election_quiet_min_s, self.election_quiet_per_hop_s * diameter_hops)
+        )
         cf = np.zeros(N_CF, dtype=np.float64)
         cf[F_SPACING] = self.spacing_mm
         cf[F_NB_RADIUS] = self.spacing_mm * self.neighbour_radius_factor

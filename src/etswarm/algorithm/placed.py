@@ -6,7 +6,6 @@ from numba import njit
 
 from etswarm.algorithm.kernel_util import (
     ACTIVE,
-    DANGER,
     INACTIVE,
     QUASI,
     STABLE,
@@ -15,6 +14,7 @@ from etswarm.algorithm.kernel_util import (
     set_state,
 )
 from etswarm.algorithm.memory import (
+    NB_EPOCH,
     NB_ID,
     NB_LAST,
     NB_PREV,
@@ -24,6 +24,7 @@ from etswarm.algorithm.memory import (
     NB_TY,
     R_BELOW_SINCE,
     R_COUNT,
+    R_EPOCH,
     R_MASK,
     R_NN,
     R_QUASI_UNTIL,
@@ -39,6 +40,7 @@ from etswarm.algorithm.params import (
     C_TICKS_QUASI,
     F_NB_RADIUS,
 )
+from etswarm.algorithm.regeneration import start_election
 
 #: Inactive robots with no Active neighbour for this many evaluations become Active.
 INACTIVE_PATIENCE_TICKS = 31 * 60
@@ -53,6 +55,7 @@ def placed_rule(i, tick, ri, nb, nb_dist, ci, cf):  # type: ignore[no-untyped-de
     y = ri[i, R_TAG_Y]
     ts = ri[i, R_TS]
     state = ri[i, R_STATE]
+    epoch = ri[i, R_EPOCH]
     slots = nb.shape[1]
     seen_dirs = 0
     witnessed_stable = False
@@ -65,8 +68,8 @@ def placed_rule(i, tick, ri, nb, nb_dist, ci, cf):  # type: ignore[no-untyped-de
         if not is_placed(st):
             continue
         k = direction_index(nb[i, m, NB_TX] - x, nb[i, m, NB_TY] - y)
-        if k < 0:
-            continue
+        if k < 0 or nb[i, m, NB_EPOCH] != epoch:
+            continue  # not a neighbour, or one still holding a tag of an older target
         if st == STABLE and nb[i, m, NB_PREV] == ACTIVE:
             witnessed_stable = True
         if tick - nb[i, m, NB_LAST] > fresh or nb_dist[i, m] > radius:
@@ -107,4 +110,4 @@ def placed_rule(i, tick, ri, nb, nb_dist, ci, cf):  # type: ignore[no-untyped-de
         elif ri[i, R_BELOW_SINCE] < 0:
             ri[i, R_BELOW_SINCE] = tick
         elif tick - ri[i, R_BELOW_SINCE] >= ci[C_TICKS_DANGER]:
-            set_state(i, ri, DANGER, tick)
+            start_election(i, tick, ri)

@@ -10,6 +10,7 @@ from etswarm.algorithm.kernel_util import (
     set_state,
 )
 from etswarm.algorithm.memory import (
+    NB_EPOCH,
     NB_FLOOR,
     NB_ID,
     NB_LAST,
@@ -17,6 +18,7 @@ from etswarm.algorithm.memory import (
     NB_RELEASED,
     NB_STATE,
     R_COOLDOWN,
+    R_EPOCH,
     R_FLOOR,
     R_FLOOR_SINCE,
     R_QMIN,
@@ -28,7 +30,6 @@ from etswarm.algorithm.memory import (
     SUB_FOLLOW,
 )
 from etswarm.algorithm.params import (
-    C_RELEASE_LIMIT,
     C_TICKS_CLEAR,
     C_TICKS_NB_FRESH,
     C_TICKS_QUIET,
@@ -37,7 +38,7 @@ from etswarm.algorithm.params import (
 
 
 @njit(cache=True)
-def queued_rule(i, tick, ri, nb, ci):  # type: ignore[no-untyped-def]
+def queued_rule(i, tick, ri, nb, ci, limit):  # type: ignore[no-untyped-def]
     """Lowest-ID release from the repository (floor/min flooding, see ``messages``).
 
     A robot leaves only when it has heard no searching robot for ``C_TICKS_CLEAR`` ticks,
@@ -49,7 +50,10 @@ def queued_rule(i, tick, ri, nb, ci):  # type: ignore[no-untyped-def]
     released = ri[i, R_RELEASED]
     slots = nb.shape[1]
     last_searcher = -(1 << 40)
+    epoch = ri[i, R_EPOCH]
     for m in range(slots):
+        if nb[i, m, NB_ID] >= 0 and nb[i, m, NB_EPOCH] != epoch:
+            continue  # a robot still working for an older target
         if nb[i, m, NB_ID] >= 0 and nb[i, m, NB_STATE] == SEARCH:
             last_searcher = max(last_searcher, nb[i, m, NB_LAST])
         if nb[i, m, NB_ID] >= 0 and tick - nb[i, m, NB_LAST] <= fresh:
@@ -60,7 +64,9 @@ def queued_rule(i, tick, ri, nb, ci):  # type: ignore[no-untyped-def]
     qmin = i
     for m in range(slots):
         sid = nb[i, m, NB_ID]
-        if sid >= 0 and tick - nb[i, m, NB_LAST] <= fresh and nb[i, m, NB_STATE] == QUEUED:
+        if sid < 0 or nb[i, m, NB_EPOCH] != epoch:
+            continue
+        if tick - nb[i, m, NB_LAST] <= fresh and nb[i, m, NB_STATE] == QUEUED:
             if floor < sid < qmin:
                 qmin = sid
             q = nb[i, m, NB_QMIN]
@@ -77,7 +83,7 @@ def queued_rule(i, tick, ri, nb, ci):  # type: ignore[no-untyped-def]
         qmin == i
         and i > floor
         and tick - last_searcher >= ci[C_TICKS_CLEAR]
-        and released < ci[C_RELEASE_LIMIT]
+        and released < limit
         and tick - ri[i, R_QMIN_SINCE] >= ci[C_TICKS_QUIET]
         and tick - ri[i, R_FLOOR_SINCE] >= ci[C_TICKS_RELEASE]
     ):

@@ -15,8 +15,17 @@ import numpy as np
 
 from etswarm.algorithm.et_controller import ETController
 from etswarm.algorithm.layout import plan_layout
+from etswarm.algorithm.memory import (
+    R_CENSUS,
+    R_ELECT_SINCE,
+    R_EPOCH,
+    R_TAG_X,
+    R_TAG_Y,
+    R_TSLOT,
+)
 from etswarm.algorithm.params import ETParams
 from etswarm.algorithm.states import PLACED_STATES, STATE_NAMES, State
+from etswarm.damage import DamageSpec, apply_damage, parse_damage
 from etswarm.errors import EtswarmError
 from etswarm.measures.formation import (
     components,
@@ -27,6 +36,7 @@ from etswarm.measures.formation import (
 )
 from etswarm.seeding import stream
 from etswarm.shapes import load_shape, scale
+from etswarm.shapes.lattice import NEIGHBOUR_OFFSETS
 from etswarm.sim import Simulator
 from etswarm.sim.params import SimParams
 from etswarm.sim.world import World
@@ -47,6 +57,7 @@ class RunConfig:
     max_time_s: float = 3 * 3600.0
     layout: str = "queue"
     fit: bool = False
+    damage: tuple[str, ...] = ()
     et: ETParams = field(default_factory=ETParams)
 
     def __post_init__(self) -> None:
@@ -60,6 +71,8 @@ class RunConfig:
             raise EtswarmError(f"--seed must be >= 0, got {self.seed}")
         if self.robots is not None and self.robots < 3:
             raise EtswarmError(f"--robots must be at least 3 (the seeds), got {self.robots}")
+        for spec in self.damage:
+            parse_damage(spec)
 
 
 class ETRun:
@@ -103,8 +116,16 @@ class ETRun:
         self.controller = ETController(n, cells, config.et, self.sim_params.ticks_per_s)
         self.controller.seed(self.layout)
         self.sim = Simulator(self.world, self.controller, self.sim_params, config.seed)
+        self.damage_rng = stream(config.seed, "damage")
+        self.pending_damage: list[DamageSpec] = [parse_damage(d) for d in config.damage]
         self.events: list[dict[str, Any]] = []
         self.formed_at_s: float | None = None
+        self.settled_at_s: float | None = None
+        self.last_damage_s: float | None = None
+        self.reformed_at: dict[int, float] = {}
+        self.census: dict[int, dict[str, int]] = {}
+        self._detected_for: float | None = -1.0
+        self._seen_leader: set[tuple[int, int]] = set()
         self.wall_s = 0.0
 
     # -- clock -------------------------------------------------------------------------
@@ -116,22 +137,139 @@ class ETRun:
     def sim_time_s(self) -> float:
         return self.world.tick / self.ticks_per_s
 
+    def _event(self, kind: str, **fields: Any) -> None:
+        self.events.append({"t_s": round(self.sim_time_s, 3), "kind": kind, **fields})
+
+    def _next_damage_tick(self) -> int | None:
+        """Tick at which the next pending damage is due (None: waits for formation)."""
+        if not self.pending_damage:
+            return None
+        spec = self.pending_damage[0]
+        if spec.at_formed:
+            if self.settled_at_s is None:
+                return None
+            return round((self.settled_at_s + spec.at_s) * self.ticks_per_s)
+        return round(spec.at_s * self.ticks_per_s)
+
     def advance(self, ticks: int) -> None:
-        """Run ``ticks`` ticks, then update the measures."""
+        """Run ``ticks`` ticks: answer Leaders' requests, apply due damage, update measures."""
+        end = self.world.tick + ticks
         t0 = time.perf_counter()
-        self.sim.run_ticks(ticks)
+        while self.world.tick < end:
+            due = self._next_damage_tick()
+            if due is not None and due <= self.world.tick:
+                self._apply_next_damage()
+                continue
+            stop_at = end if due is None else min(end, due)
+            self.sim.run_ticks(stop_at - self.world.tick)
+            if self.controller.stop[0]:
+                self._answer_requests()
         self.wall_s += time.perf_counter() - t0
         self._check()
 
+    def _apply_next_damage(self) -> None:
+        spec = self.pending_damage.pop(0)
+        ids = apply_damage(spec, self.world, self.config.et.spacing_mm, self.damage_rng)
+        self.last_damage_s = self.sim_time_s
+        self.settled_at_s = None
+        self.reformed_at.clear()
+        self._event("damage", spec=spec.text, robots=len(ids))
+
+    def _answer_requests(self) -> None:
+        """Host side of a Leader's on-board ``scale(bitmap, n)`` and placement choice."""
+        ctl = self.controller
+        for leader in ctl.pending_requests():
+            n = int(ctl.ri[leader, R_CENSUS])
+            cells, tx, ty = self._scaled_placement(int(leader), n)
+            slot = ctl.answer(int(leader), cells, n, tx, ty)
+            group = self._group_of(int(leader))
+            self.census[slot] = {"leader": int(leader), "count": n, "robots": len(group)}
+            self._event("census", leader=int(leader), count=n, robots=len(group), slot=slot)
+        ctl.stop[0] = 0
+
+    def _scaled_placement(self, leader: int, n: int) -> tuple[np.ndarray, int, int]:
+        """scale(bitmap, n), translated so that it holds the Leader's site and two sites of
+        its neighbours that make a seed triangle with it (paper: the Leader and two
+        neighbours are the new seeds), and as many other sites the Leader knows to be
+        held as possible. Empty when n < 3 (too small to seed)."""
+        if n < 3:
+            return np.zeros((0, 2), dtype=np.int64), 0, 0
+        cells = scale(self.shape, min(n, self.shape.n_cells))
+        ctl = self.controller
+        lx, ly = (int(v) for v in ctl.ri[leader, [R_TAG_X, R_TAG_Y]])
+        # Robots heard since the election began are the remnant's; older entries left.
+        known = ctl.known_tags(leader, int(ctl.ri[leader, R_ELECT_SINCE]))
+        offsets = [tuple(int(v) for v in o) for o in NEIGHBOUR_OFFSETS]
+        triangles = [
+            ((lx + a[0], ly + a[1]), (lx + b[0], ly + b[1]))
+            for a, b in zip(offsets, offsets[1:] + offsets[:1], strict=True)
+            if (lx + a[0], ly + a[1]) in known and (lx + b[0], ly + b[1]) in known
+        ]
+        best: tuple[int, int, int, int, int] | None = None
+        for sx, sy in cells.tolist():
+            tx, ty = lx - sx, ly - sy
+            moved = cells + np.array([tx, ty])
+            if not ctl.fits(moved):
+                continue
+            sites = {(int(x), int(y)) for x, y in moved.tolist()}
+            seeded = any(p in sites and q in sites for p, q in triangles)
+            kept = len(sites & known)
+            key = (0 if seeded else 1, -kept, abs(tx) + abs(ty), tx, ty)
+            if best is None or key < best:
+                best = key
+        if best is None:
+            return cells, 0, 0
+        tx, ty = best[3], best[4]
+        return cells + np.array([tx, ty]), tx, ty
+
+    def _group_of(self, robot: int) -> np.ndarray:
+        for group in self._groups():
+            if robot in group:
+                return group
+        return np.array([robot])
+
+    def _groups(self) -> list[np.ndarray]:
+        live = self.world.present & self.world.alive
+        return components(self.world.pos, live, self.sim_params.comm_range_mm)
+
     def _check(self) -> None:
-        if self.formed_at_s is None and self.formed():
-            self.formed_at_s = self.sim_time_s
-            self.events.append({"t_s": self.sim_time_s, "kind": "formed"})
+        states = self.controller.states
+        danger = np.flatnonzero(states == State.DANGER)
+        if len(danger) and self._detected_for != self.last_damage_s:
+            self._detected_for = self.last_damage_s
+            self._event("detected", robots=len(danger))
+        epoch = self.controller.ri[:, R_EPOCH]
+        for i in np.flatnonzero(states == State.LEADER):
+            key = (int(i), int(epoch[i]))
+            if key not in self._seen_leader:
+                self._seen_leader.add(key)
+                self._event("leader", robot=int(i))
+        comps = self.component_report()
+        for comp in comps:
+            slot = comp["slot"]
+            if comp["formed"] and slot not in self.reformed_at:
+                self.reformed_at[slot] = self.sim_time_s
+                if slot == 0 and self.formed_at_s is None:
+                    self.formed_at_s = self.sim_time_s
+                    self._event("formed", cells=comp["target_cells"])
+                elif slot != 0:
+                    self._event("reformed", slot=slot, cells=comp["target_cells"])
+        if (
+            self.settled_at_s is None
+            and comps
+            and all(c["formed"] or c["too_small"] for c in comps)
+        ):
+            self.settled_at_s = self.sim_time_s
+
+    @property
+    def finished(self) -> bool:
+        """Settled (every remnant formed or too small) and no damage left to apply."""
+        return self.settled_at_s is not None and not self.pending_damage
 
     def run(self, progress=None) -> dict[str, Any]:  # type: ignore[no-untyped-def]
-        """Advance until formed or ``max_time_s``; return the summary."""
+        """Advance until every remnant formed after the last damage, or ``max_time_s``."""
         max_ticks = round(self.config.max_time_s * self.ticks_per_s)
-        while self.formed_at_s is None and self.world.tick < max_ticks:
+        while not self.finished and self.world.tick < max_ticks:
             step = min(CHECK_EVERY_TICKS, max_ticks - self.world.tick)
             self.advance(step)
             if progress is not None:
@@ -147,32 +285,54 @@ class ETRun:
         return holds, stable
 
     def formed(self) -> bool:
+        """Every remnant holds its current target with Stable robots, no tag twice."""
+        comps = self.component_report()
+        return bool(comps) and all(c["formed"] for c in comps)
+
+    def component_report(self) -> list[dict[str, Any]]:
+        """Per radio-connected group of working robots: its target and how it stands."""
         holds, stable = self._masks()
-        return is_formed(self.controller.tags, holds, stable, self.target)
+        tags = self.controller.tags
+        slots = self.controller.ri[:, R_TSLOT]
+        report = []
+        for group in self._groups():
+            member = np.zeros(self.world.n, dtype=bool)
+            member[group] = True
+            slot = int(np.bincount(slots[group]).argmax())
+            target = self.controller.slot_cells[slot]
+            census = self.census.get(slot)
+            too_small = slot != 0 and len(target) == 0
+            g_holds = holds & member
+            g_formed = len(target) > 0 and is_formed(tags, g_holds, stable & member, target)
+            start = 0.0 if slot == 0 else (self.last_damage_s or 0.0)
+            done = self.reformed_at.get(slot)
+            if g_formed and done is None:
+                done = self.sim_time_s
+            report.append(
+                {
+                    "robots": len(group),
+                    "target_cells": len(target),
+                    "formed": bool(g_formed),
+                    "jaccard": round(jaccard(tags, g_holds, target), 6) if len(target) else None,
+                    "census_count": None if census is None else census["count"],
+                    "time_to_stable_s": None if done is None else round(done - start, 3),
+                    "too_small": bool(too_small),
+                    "slot": slot,
+                }
+            )
+        return report
 
     def summary(self) -> dict[str, Any]:
         """The JSON summary (DESIGN §5 measures; keys documented in the README)."""
-        holds, stable = self._masks()
+        holds, _ = self._masks()
         tags = self.controller.tags
         live = self.world.present & self.world.alive
         states = self.controller.states
-        comps = []
-        for group in components(self.world.pos, live, self.sim_params.comm_range_mm):
-            member = np.zeros(self.world.n, dtype=bool)
-            member[group] = True
-            g_holds = holds & member
-            g_formed = is_formed(tags, g_holds, stable & member, self.target)
-            comps.append(
-                {
-                    "robots": len(group),
-                    "target_cells": len(self.target),
-                    "formed": bool(g_formed),
-                    "jaccard": round(jaccard(tags, g_holds, self.target), 6),
-                    "census_count": None,
-                    "time_to_stable_s": self.formed_at_s if g_formed else None,
-                }
-            )
         err = placement_error_mm(self.world.pos, tags, holds, self.config.et.spacing_mm)
+        comps = self.component_report()
+        leaders: dict[int, int] = {}
+        for comp_ids in self._groups():
+            leaders[int(comp_ids[0])] = int(np.sum(states[comp_ids] == State.LEADER))
         return {
             "shape": self.config.shape,
             "robots": int(self.world.n),
@@ -181,13 +341,24 @@ class ETRun:
             "loss": self.config.loss,
             "noise_mm": self.config.noise_mm,
             "layout": self.config.layout,
+            "damage": list(self.config.damage),
             "formed": self.formed_at_s is not None,
             "formation_time_s": self.formed_at_s,
+            "settled": self.finished,
             "sim_time_s": round(self.sim_time_s, 3),
             "wall_time_s": round(self.wall_s, 3),
-            "jaccard": round(jaccard(tags, holds, self.target), 6),
+            "jaccard": round(
+                jaccard(tags, holds & (self.controller.ri[:, R_TSLOT] == 0), self.target), 6
+            ),
             "placement_error_mm": None if err is None else round(err, 3),
-            "duplicate_tags": [list(t) for t in duplicate_tags(tags, holds)],
+            "duplicate_tags": sorted(
+                {
+                    tuple(t)
+                    for group in self._groups()
+                    for t in duplicate_tags(tags[group], holds[group])
+                }
+            ),
+            "max_leaders_per_component": max(leaders.values(), default=0),
             "states": {
                 STATE_NAMES[s]: int(np.sum(live & (states == s))) for s in range(len(State))
             },

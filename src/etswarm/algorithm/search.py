@@ -34,6 +34,7 @@ from etswarm.algorithm.memory import (
     R_CAND_Y,
     R_COOLDOWN,
     R_COUNT,
+    R_HAS_TAG,
     R_NN,
     R_REF_ID,
     R_SUB,
@@ -274,6 +275,7 @@ def search_rule(i, tick, new_msgs, ri, nb, nb_dist, motor, gene_flag, gene_nn, c
             ri[i, R_TAG_Y] = cy
             ri[i, R_NN] = gene_nn_at(gene_nn, ci, cx, cy)
             ri[i, R_TS] = min_ts + 1
+            ri[i, R_HAS_TAG] = 1
             ri[i, R_COUNT] = 0
             ri[i, R_BELOW_SINCE] = -1
         else:

@@ -1,0 +1,225 @@
+"""Regeneration (paper Algorithm 2): election, census, and adopting a scaled target.
+
+A Stable robot whose neighbour count stays below NN turns Danger and starts an election
+for the next *epoch*; every robot of the remnant that hears it joins (and stops). The
+election floods the lowest ID together with a hop count, which also builds a spanning
+tree (each robot's parent is a neighbour one hop nearer the lowest ID); subtree sizes flow
+back up the tree (convergecast), so when nothing has changed for the quiet time the robot
+with the lowest ID knows it is the Leader and how many robots the remnant has (census
+``tree``). It then asks for ``scale(bitmap, n)`` placed where it keeps the most robots it
+knows of in place (the host computes it: ``R_REQUEST``), adopts it and announces
+(epoch, n, tx, ty); every robot adopts the announcement and relays it. Robots whose tag is
+in the new shape stay (the Leader Active with TS 1, the others Inactive with TS 2); the
+rest become Queued and join again through Search.
+"""
+
+from __future__ import annotations
+
+from numba import njit
+
+from etswarm.algorithm.kernel_util import (
+    ACTIVE,
+    DANGER,
+    INACTIVE,
+    LEADER,
+    QUEUED,
+    gene_flag_at,
+    gene_nn_at,
+    set_state,
+)
+from etswarm.algorithm.memory import (
+    NB_EEPOCH,
+    NB_EHOP,
+    NB_ELAST,
+    NB_ELEADER,
+    NB_EPARENT,
+    NB_ESUB,
+    NB_ID,
+    PHASE_ELECTING,
+    PHASE_NORMAL,
+    R_ADOPTED_AT,
+    R_BELOW_SINCE,
+    R_BEST_SINCE,
+    R_CENSUS,
+    R_COUNT,
+    R_COUNT_SINCE,
+    R_ELECT_SINCE,
+    R_EPOCH,
+    R_FLOOR,
+    R_FLOOR_SINCE,
+    R_HAS_TAG,
+    R_HOP,
+    R_LEADER,
+    R_NEWSLOT,
+    R_NN,
+    R_PARENT,
+    R_PEND_EPOCH,
+    R_PEND_N,
+    R_PEND_TX,
+    R_PEND_TY,
+    R_PHASE,
+    R_QMIN,
+    R_QMIN_SINCE,
+    R_RELEASED,
+    R_REQUEST,
+    R_STATE,
+    R_SUBCOUNT,
+    R_TAG_X,
+    R_TAG_Y,
+    R_TS,
+    R_TSLOT,
+    SLOT_N,
+    SLOT_TX,
+    SLOT_TY,
+    SLOT_USED,
+)
+from etswarm.algorithm.params import C_TICKS_NB_FRESH, C_TICKS_REGEN_QUIET
+
+#: Ticks a robot keeps relaying a newly adopted target (alternating with its status).
+TARGET_RELAY_TICKS = 31 * 40
+
+
+@njit(cache=True)
+def start_election(i, tick, ri):  # type: ignore[no-untyped-def]
+    """Robot i joins the election for epoch R_EPOCH + 1 as a candidate of its own."""
+    ri[i, R_PHASE] = PHASE_ELECTING
+    ri[i, R_LEADER] = i
+    ri[i, R_HOP] = 0
+    ri[i, R_PARENT] = -1
+    ri[i, R_SUBCOUNT] = 1
+    ri[i, R_ELECT_SINCE] = tick
+    ri[i, R_BEST_SINCE] = tick
+    ri[i, R_COUNT_SINCE] = tick
+    ri[i, R_REQUEST] = 0
+    set_state(i, ri, DANGER, tick)
+
+
+@njit(cache=True)
+def election_rule(i, tick, ri, nb, ci, stop):  # type: ignore[no-untyped-def]
+    """Min-ID flooding with hop counts and subtree counts; the quiet Leader asks for n."""
+    epoch = ri[i, R_EPOCH] + 1
+    fresh = ci[C_TICKS_NB_FRESH]
+    best_leader = i
+    best_hop = 0
+    parent = -1
+    slots = nb.shape[1]
+    for m in range(slots):
+        sid = nb[i, m, NB_ID]
+        if sid < 0 or nb[i, m, NB_EEPOCH] != epoch or tick - nb[i, m, NB_ELAST] > fresh:
+            continue
+        leader = nb[i, m, NB_ELEADER]
+        hop = nb[i, m, NB_EHOP] + 1
+        if (
+            leader < best_leader
+            or (leader == best_leader and hop < best_hop)
+            or (leader == best_leader and hop == best_hop and parent >= 0 and sid < parent)
+        ):
+            best_leader = leader
+            best_hop = hop
+            parent = sid
+    if best_leader != ri[i, R_LEADER] or best_hop != ri[i, R_HOP]:
+        ri[i, R_BEST_SINCE] = tick
+    ri[i, R_LEADER] = best_leader
+    ri[i, R_HOP] = best_hop
+    ri[i, R_PARENT] = parent
+    sub = 1
+    for m in range(slots):
+        if (
+            nb[i, m, NB_ID] >= 0
+            and nb[i, m, NB_EEPOCH] == epoch
+            and tick - nb[i, m, NB_ELAST] <= fresh
+            and nb[i, m, NB_EPARENT] == i
+            and nb[i, m, NB_ELEADER] == best_leader
+        ):
+            sub += nb[i, m, NB_ESUB]
+    if sub != ri[i, R_SUBCOUNT]:
+        ri[i, R_COUNT_SINCE] = tick
+        ri[i, R_SUBCOUNT] = sub
+    if best_leader != i:
+        if ri[i, R_STATE] == LEADER:
+            set_state(i, ri, DANGER, tick)
+        ri[i, R_REQUEST] = 0
+        return
+    quiet = ci[C_TICKS_REGEN_QUIET]
+    if ri[i, R_REQUEST] == 0 and (
+        tick - ri[i, R_ELECT_SINCE] >= quiet
+        and tick - ri[i, R_BEST_SINCE] >= quiet
+        and tick - ri[i, R_COUNT_SINCE] >= quiet
+    ):
+        set_state(i, ri, LEADER, tick)
+        ri[i, R_CENSUS] = sub
+        ri[i, R_REQUEST] = 1
+        stop[0] = 1
+
+
+@njit(cache=True)
+def find_slot(slot_info, n, tx, ty):  # type: ignore[no-untyped-def]
+    """Slot holding scale(bitmap, n) translated by (tx, ty), or -1."""
+    for s in range(1, slot_info.shape[0]):
+        if (
+            slot_info[s, SLOT_USED] == 1
+            and slot_info[s, SLOT_N] == n
+            and slot_info[s, SLOT_TX] == tx
+            and slot_info[s, SLOT_TY] == ty
+        ):
+            return s
+    return -1
+
+
+@njit(cache=True)
+def adopt_target(i, tick, ri, nb, slot, epoch, leader, gene_flag, gene_nn, slot_info, ci):  # type: ignore[no-untyped-def]
+    """Robot i takes target ``slot`` of ``epoch``: stays on its site if the new shape has
+    it (the Leader as the Active seed), else goes back to Queued. Its neighbour table is
+    cleared: what it knew describes the old target."""
+    for m in range(nb.shape[1]):
+        nb[i, m, NB_ID] = -1
+    ri[i, R_EPOCH] = epoch
+    ri[i, R_TSLOT] = slot
+    ri[i, R_PHASE] = PHASE_NORMAL
+    ri[i, R_REQUEST] = 0
+    ri[i, R_ADOPTED_AT] = tick
+    ri[i, R_PEND_EPOCH] = epoch
+    ri[i, R_PEND_N] = slot_info[slot, SLOT_N]
+    ri[i, R_PEND_TX] = slot_info[slot, SLOT_TX]
+    ri[i, R_PEND_TY] = slot_info[slot, SLOT_TY]
+    ri[i, R_LEADER] = leader
+    ri[i, R_BELOW_SINCE] = -1
+    ri[i, R_COUNT] = 0
+    x = ri[i, R_TAG_X]
+    y = ri[i, R_TAG_Y]
+    if ri[i, R_HAS_TAG] == 1 and gene_flag_at(gene_flag[slot], ci, x, y) == 1:
+        ri[i, R_NN] = gene_nn_at(gene_nn[slot], ci, x, y)
+        if i == leader:
+            set_state(i, ri, ACTIVE, tick)
+            ri[i, R_TS] = 1
+        else:
+            set_state(i, ri, INACTIVE, tick)
+            ri[i, R_TS] = 2
+    else:
+        ri[i, R_HAS_TAG] = 0
+        set_state(i, ri, QUEUED, tick)
+        ri[i, R_FLOOR] = -1
+        ri[i, R_FLOOR_SINCE] = -(1 << 40)
+        ri[i, R_RELEASED] = 0
+        ri[i, R_QMIN] = i
+        ri[i, R_QMIN_SINCE] = tick
+
+
+@njit(cache=True)
+def announcement_rule(i, tick, ri, nb, gene_flag, gene_nn, slot_info, ci):  # type: ignore[no-untyped-def]
+    """Adopt a heard announcement of the target this robot's election was for; a Leader
+    adopts the target the host computed for it."""
+    if ri[i, R_PHASE] != PHASE_ELECTING:
+        return False
+    epoch = ri[i, R_EPOCH] + 1
+    if ri[i, R_REQUEST] == 2:
+        slot = ri[i, R_NEWSLOT]
+        adopt_target(i, tick, ri, nb, slot, epoch, i, gene_flag, gene_nn, slot_info, ci)
+        return True
+    if ri[i, R_PEND_EPOCH] == epoch:
+        slot = find_slot(slot_info, ri[i, R_PEND_N], ri[i, R_PEND_TX], ri[i, R_PEND_TY])
+        if slot >= 0:
+            leader = ri[i, R_LEADER]
+            adopt_target(i, tick, ri, nb, slot, epoch, leader, gene_flag, gene_nn, slot_info, ci)
+            return True
+    return False

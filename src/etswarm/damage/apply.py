@@ -1,0 +1,65 @@
+"""Applying a damage to the world: which robots, and what happens to them."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from etswarm.damage.spec import DamageSpec
+from etswarm.errors import EtswarmError
+from etswarm.sim.world import World
+
+#: How far a split moves the cut-off side, mm: far beyond the 70 mm radio range.
+SPLIT_SHIFT_MM = 600.0
+
+
+def select(
+    spec: DamageSpec, world: World, spacing_mm: float, rng: np.random.Generator
+) -> np.ndarray:
+    """IDs ((K,) int64) of the present robots the damage's region holds."""
+    present = world.present
+    xy = world.pos / spacing_mm
+    if spec.region in ("line", "half"):
+        coord = xy[:, 0] if spec.axis == "x" else xy[:, 1]
+        value = spec.values[0]
+        inside = coord < value if spec.op == "<" else coord > value
+    elif spec.region == "disc":
+        cx, cy, r = spec.values
+        inside = np.hypot(xy[:, 0] - cx, xy[:, 1] - cy) <= r
+    elif spec.region == "band":
+        coord = xy[:, 0] if spec.axis == "x" else xy[:, 1]
+        lo, hi = spec.values
+        inside = (coord >= lo) & (coord <= hi)
+    elif spec.region == "random":
+        candidates = np.flatnonzero(present)
+        count = round(spec.values[0] * len(candidates))
+        chosen = rng.choice(candidates, size=count, replace=False) if count else []
+        inside = np.zeros(world.n, dtype=bool)
+        inside[np.asarray(chosen, dtype=np.int64)] = True
+    else:
+        ids = np.asarray(spec.values, dtype=np.int64)
+        if np.any(ids >= world.n):
+            raise EtswarmError(
+                f"--damage {spec.text!r}: robot IDs must be below {world.n}, got {ids.max()}"
+            )
+        inside = np.zeros(world.n, dtype=bool)
+        inside[ids] = True
+    return np.flatnonzero(inside & present)
+
+
+def apply_damage(
+    spec: DamageSpec, world: World, spacing_mm: float, rng: np.random.Generator
+) -> np.ndarray:
+    """Damage ``world`` in place; return the IDs affected.
+
+    split: the selected side moves ``SPLIT_SHIFT_MM`` away along the axis (its robots keep
+    running); remove: they leave the world; kill: they stop and fall silent.
+    """
+    ids = select(spec, world, spacing_mm, rng)
+    if spec.kind == "split":
+        shift = np.array([SPLIT_SHIFT_MM, 0.0] if spec.axis == "x" else [0.0, SPLIT_SHIFT_MM])
+        world.pos[ids] += shift
+    elif spec.kind == "remove":
+        world.remove(ids)
+    else:
+        world.kill(ids)
+    return ids
