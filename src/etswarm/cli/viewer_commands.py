@@ -192,7 +192,10 @@ def _et_live(  # type: ignore[no-untyped-def]
         fit=fit,
         et=et,
     )
-    et_run = ETRun(config)
+    from rich.console import Console
+
+    with Console(stderr=True).status(f"setting up {shape} (a first run compiles the controller)"):
+        et_run = ETRun(config)
     for note in et_run.notes:
         click.echo(f"etswarm: {note}", err=True)
     return ETLive(et_run)
