@@ -88,6 +88,11 @@ def text_surface(text: str, size: int, colour: tuple[int, int, int], bold: bool 
 # --------------------------------------------------------------------------- stamps
 
 
+def _supersample(r_px: float) -> int:
+    """Anti-aliasing factor for a stamp: 4x for small discs, less for big ones."""
+    return _SUPERSAMPLE if r_px < 40 else (2 if r_px < 160 else 1)
+
+
 def _radius_key(r_px: float) -> float:
     """On-screen radii are quantised so zooming does not fill the stamp cache."""
     return max(0.5, round(r_px * 4) / 4)
@@ -97,7 +102,7 @@ def _disc_stamp(fill_key: int, r_px: float, heading_bin: int, ring: bool = False
     """An anti-aliased disc of colour ``FILL_LUT[fill_key]`` with a heading tick."""
 
     def make():  # type: ignore[no-untyped-def]
-        ss = _SUPERSAMPLE
+        ss = _supersample(r_px)
         size = math.ceil(2 * r_px) + 2
         big = pygame.Surface((size * ss, size * ss), pygame.SRCALPHA)
         c = size * ss / 2
@@ -131,7 +136,7 @@ def _disc_stamp(fill_key: int, r_px: float, heading_bin: int, ring: bool = False
 
 def _site_stamp(r_px: float):  # type: ignore[no-untyped-def]
     def make():  # type: ignore[no-untyped-def]
-        ss = _SUPERSAMPLE
+        ss = _supersample(r_px)
         size = math.ceil(2 * r_px) + 2
         big = pygame.Surface((size * ss, size * ss), pygame.SRCALPHA)
         pygame.draw.circle(big, palette.TARGET_SITE, (size * ss / 2, size * ss / 2), r_px * ss)

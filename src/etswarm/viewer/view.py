@@ -134,7 +134,7 @@ class ViewState:
     def zoom_at(self, factor: float, screen_px: tuple[float, float]) -> None:
         """Zoom by ``factor`` keeping the world point under ``screen_px`` fixed."""
         anchor = self.screen_to_world(screen_px)
-        self.zoom = float(np.clip(self.zoom * factor, 1e-3, 1e3))
+        self.zoom = float(np.clip(self.zoom * factor, 1e-4, 40.0))
         after = self.screen_to_world(screen_px)
         self.centre_mm = self.centre_mm + (anchor - after)
 
