@@ -17,13 +17,12 @@ from etswarm.algorithm.memory import (
 )
 from etswarm.algorithm.run import ETRun
 from etswarm.algorithm.states import PLACED_STATES, STATE_NAMES
+from etswarm.damage.apply import SPLIT_SHIFT_MM
 from etswarm.shapes.lattice import tags_to_xy
 from etswarm.viewer.scene import Scene
 
 Point = tuple[float, float]
 
-#: How far a split moves the cut-off side, mm (well beyond the 70 mm radio range).
-SPLIT_SHIFT_MM = 400.0
 
 
 class ETLive:
@@ -34,19 +33,15 @@ class ETLive:
         self.title = title or f"ET {run.config.shape}, seed {run.config.seed}"
         self.ticks_per_second = run.ticks_per_s
         self._max_ticks = round(run.config.max_time_s * run.ticks_per_s)
-        self._events: list[str] = []
 
     @property
     def finished(self) -> bool:
-        return self.run.world.tick >= self._max_ticks
+        return self.run.finished or self.run.world.tick >= self._max_ticks
 
     def advance(self, ticks: int) -> None:
         ticks = min(ticks, self._max_ticks - self.run.world.tick)
         if ticks > 0:
-            before = len(self.run.events)
             self.run.advance(ticks)
-            for ev in self.run.events[before:]:
-                self._events.append(f"{ev['t_s'] / 60:.1f} min: {ev['kind']}")
 
     def scene(self) -> Scene:
         r = self.run
@@ -65,7 +60,7 @@ class ETLive:
             comm_range_mm=r.sim_params.comm_range_mm,
             body_radius_mm=r.sim_params.body_radius_mm,
             sim_time_s=r.sim_time_s,
-            events=list(self._events[-4:]),
+            events=[f"{e['t_s'] / 60:.1f} min: {e['kind']}" for e in r.events[-4:]],
             title=self.title,
         )
 
@@ -111,9 +106,9 @@ class ETLive:
         if length < 1e-9:
             return
         normal = np.array([-direction[1], direction[0]]) / length
-        side = (w.pos - a) @ normal > 0
+        side = ((w.pos - a) @ normal > 0) & w.present
         w.pos[side] += SPLIT_SHIFT_MM * normal
-        self._events.append(f"{self.run.sim_time_s / 60:.1f} min: split ({int(side.sum())})")
+        self.run.record_damage("split (viewer)", int(side.sum()))
 
     def damage_remove_rect(self, p0: Point, p1: Point) -> None:
         w = self.run.world
@@ -123,9 +118,9 @@ class ETLive:
         ids = np.flatnonzero(inside)
         if len(ids):
             w.remove(ids)
-        self._events.append(f"{self.run.sim_time_s / 60:.1f} min: removed {len(ids)}")
+        self.run.record_damage("remove (viewer)", len(ids))
 
     def damage_kill(self, ids: list[int]) -> None:
         if ids:
             self.run.world.kill(np.asarray(ids, dtype=np.int64))
-        self._events.append(f"{self.run.sim_time_s / 60:.1f} min: killed {len(ids)}")
+        self.run.record_damage("kill (viewer)", len(ids))

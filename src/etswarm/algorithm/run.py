@@ -169,11 +169,20 @@ class ETRun:
 
     def _apply_next_damage(self) -> None:
         spec = self.pending_damage.pop(0)
+        self.apply_damage(spec)
+
+    def apply_damage(self, spec: DamageSpec) -> np.ndarray:
+        """Apply ``spec`` now (whatever its time); return the IDs affected."""
         ids = apply_damage(spec, self.world, self.config.et.spacing_mm, self.damage_rng)
+        self.record_damage(spec.text, len(ids))
+        return ids
+
+    def record_damage(self, text: str, robots: int) -> None:
+        """Note a damage done to the world (by a spec, or by hand in the viewer)."""
         self.last_damage_s = self.sim_time_s
         self.settled_at_s = None
         self.reformed_at.clear()
-        self._event("damage", spec=spec.text, robots=len(ids))
+        self._event("damage", spec=text, robots=int(robots))
 
     def _answer_requests(self) -> None:
         """Host side of a Leader's on-board ``scale(bitmap, n)`` and placement choice."""

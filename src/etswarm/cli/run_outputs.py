@@ -1,0 +1,119 @@
+"""Driving an ET run for the CLI: progress bar, video, event snapshots, summary file.
+
+Shared by ``etswarm run`` and ``etswarm demo``. Whatever the user asked to save is written
+as the run goes (snapshots at each event, video frames as they are made) and closed
+properly when the run ends, fails or is interrupted.
+"""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+from typing import Any
+
+from rich.progress import BarColumn, Progress, TextColumn, TimeElapsedColumn
+
+from etswarm.algorithm.live import ETLive
+from etswarm.algorithm.run import ETRun
+
+
+def hms(seconds: float) -> str:
+    """``h:mm:ss`` of a number of seconds."""
+    s = round(seconds)
+    return f"{s // 3600}:{s % 3600 // 60:02d}:{s % 60:02d}"
+
+
+def _status(run: ETRun) -> str:
+    placed = int((run.controller.states >= 2).sum())
+    last = run.events[-1]["kind"] if run.events else ""
+    return f"sim {hms(run.sim_time_s)}  placed {placed}/{run.world.n}  {last}"
+
+
+def drive(
+    run: ETRun,
+    *,
+    video: Path | None = None,
+    fps: float = 10.0,
+    speedup: float = 300.0,
+    snapshots: Path | None = None,
+    quiet: bool = False,
+    size: tuple[int, int] = (1000, 750),
+) -> dict[str, Any]:
+    """Run ``run`` to its end (settled or out of time) and return its summary.
+
+    With ``video``, frames are rendered every ``speedup / fps`` simulated seconds; with
+    ``snapshots``, a PNG is saved at the start and at every event.
+    """
+    from etswarm.viewer.snapshots import EventSnapshots
+
+    live = ETLive(run)
+    shots = EventSnapshots(snapshots, size=size) if snapshots is not None else None
+    if shots is not None:
+        shots.start(live.scene())
+    columns = (
+        TextColumn("[bold]{task.description}"),
+        BarColumn(),
+        TextColumn("{task.fields[status]}"),
+        TimeElapsedColumn(),
+    )
+    max_s = run.config.max_time_s
+    with Progress(*columns, transient=True, disable=quiet) as bar:
+        task = bar.add_task(run.config.shape, total=max_s, status="")
+
+        def tick(r: ETRun) -> None:
+            bar.update(task, completed=r.sim_time_s, status=_status(r))
+            if shots is not None:
+                shots.update(live.scene(), r.events)
+
+        if video is None:
+            run.run(tick)
+        else:
+            _drive_video(live, video, fps, speedup, size, tick)
+    return run.summary()
+
+
+def _drive_video(live: ETLive, path: Path, fps: float, speedup: float, size, tick) -> None:  # type: ignore[no-untyped-def]
+    from etswarm.viewer.headless import live_frames
+    from etswarm.viewer.video import VideoWriter
+
+    with VideoWriter(path, fps) as writer:
+        for frame in live_frames(live, fps=fps, speed=speedup, size=size):
+            writer.write(frame)
+            tick(live.run)
+
+
+def write_summary(summary: dict[str, Any], out: Path) -> Path:
+    """Write ``summary`` as ``out/summary.json`` (atomically); return the path."""
+    out.mkdir(parents=True, exist_ok=True)
+    path = out / "summary.json"
+    tmp = out / ".summary.json.tmp"
+    tmp.write_text(json.dumps(summary, indent=2) + "\n")
+    tmp.replace(path)
+    return path
+
+
+def describe(summary: dict[str, Any]) -> list[str]:
+    """Human-readable lines about a summary."""
+    t = summary["formation_time_s"]
+    lines = [
+        f"{summary['shape']}: {'formed' if summary['formed'] else 'NOT formed'}"
+        + (f" in {hms(t)} simulated" if t is not None else "")
+        + f"; {summary['robots']} robots, jaccard {summary['jaccard']:.3f}, "
+        f"placement error {summary['placement_error_mm']} mm, "
+        f"wall {summary['wall_time_s']:.1f} s, "
+        f"x{summary['sim_time_s'] / max(summary['wall_time_s'], 1e-9):.0f} real time",
+        "states: " + ", ".join(f"{k} {v}" for k, v in summary["states"].items() if v),
+    ]
+    if summary["damage"]:
+        for k, comp in enumerate(summary["components"]):
+            lines.append(
+                f"remnant {k}: {comp['robots']} robots, census {comp['census_count']}, "
+                f"target {comp['target_cells']} cells, "
+                f"{'reformed' if comp['formed'] else 'not reformed'}"
+                + (
+                    f" {hms(comp['time_to_stable_s'])} after the damage"
+                    if comp["formed"] and comp["time_to_stable_s"] is not None
+                    else ""
+                )
+            )
+    return lines
