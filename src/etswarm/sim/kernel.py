@@ -53,7 +53,7 @@ def run_ticks(n, tick0, cfg, grid, pos, heading, motor, led, alive, present, spe
     if n <= 0:
         return 0
     stop = mem[0]
-    n_dirty = grid_sync(grid, pos, present, dirty, dirty_flag, 0)
+    n_dirty = grid_sync(grid, pos, present, dirty, dirty_flag, grid.state[2])
     for k in range(n):
         tick = tick0 + k
         radio_phase(tick, cfg, grid, pos, alive, present, tx_phase, out_on, out_type,
@@ -62,8 +62,8 @@ def run_ticks(n, tick0, cfg, grid, pos, heading, motor, led, alive, present, spe
                         out_on, out_type, out_data, mem, rng_ctl)
         n_dirty = move_phase(cfg, grid, pos, heading, motor, alive, present, speed,
                              turn_rate, dirty, dirty_flag, n_dirty, rng_motion)
-        collide_phase(cfg, grid, pos, present, dirty, dirty_flag, n_dirty, spare, counters)
-        n_dirty = 0
+        n_dirty = collide_phase(cfg, grid, pos, present, dirty, dirty_flag, n_dirty, spare,
+                                counters)
         if stop[0] != 0:
             return k + 1
     return n

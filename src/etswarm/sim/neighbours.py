@@ -17,7 +17,8 @@ with copies of their positions; a row of neighbouring cells is one contiguous sl
   collision phase must examine it (see :mod:`etswarm.sim.collide`)
 - ``geom``   (6,) float64: minimum cell, margin, cell, 1/cell, origin x, origin y (mm)
 - ``dims``   (2,) int64: nx, ny
-- ``state``  (2,) int64: [stale flag, number of rebuilds]
+- ``state``  (3,) int64: [stale flag, number of rebuilds, length of the collision work
+  list carried over to the next tick]
 
 A filed robot may wander up to ``margin`` mm outside its filed cell before the list must
 be rebuilt (O(N + cells)); queries widen their box by the margin and clip it to the
@@ -64,7 +65,7 @@ def make_grid(n_robots: int, cell_mm: float, margin_mm: float) -> Grid:
     ``margin_mm`` mm, at most max(1024, 4 N) cells."""
     if cell_mm <= 0 or margin_mm < 0:
         raise ValueError(f"bad grid geometry: cell {cell_mm} mm, margin {margin_mm} mm")
-    capacity = max(1024, 4 * n_robots)
+    capacity = max(4096, 8 * n_robots)
     return Grid(
         start=np.zeros(capacity + 1, dtype=np.int32),
         sx=np.zeros(n_robots),
@@ -76,7 +77,7 @@ def make_grid(n_robots: int, cell_mm: float, margin_mm: float) -> Grid:
         budget=np.zeros(n_robots),
         geom=np.array([cell_mm, margin_mm, cell_mm, 1.0 / cell_mm, 0.0, 0.0]),
         dims=np.ones(2, dtype=np.int64),
-        state=np.zeros(2, dtype=np.int64),
+        state=np.zeros(3, dtype=np.int64),
     )
 
 
@@ -184,7 +185,8 @@ def grid_sync(grid, pos, present, dirty, dirty_flag, n_dirty):
     is still filed (or the grid is stale), the grid is rebuilt and those robots are put
     on the collision work list ``dirty`` (slots; flags by slot in ``dirty_flag``), so the
     next collision phase examines them. Returns the new work-list length. Costs O(N)
-    comparisons and nothing else when nothing changed. Call with an empty work list.
+    comparisons and nothing else when nothing changed. ``dirty[:n_dirty]`` may hold a
+    work list carried over from the last tick; it is kept.
     """
     changed = grid.state[0] != 0
     n = pos.shape[0]
@@ -199,7 +201,7 @@ def grid_sync(grid, pos, present, dirty, dirty_flag, n_dirty):
         elif s >= 0:
             changed = True
     if changed:
-        grid_rebuild(grid, pos, present)
+        rebuild_keeping_list(grid, pos, present, dirty, n_dirty, dirty_flag)
         for i in range(n):
             if edited[i]:
                 grid.budget[i] = 0.0

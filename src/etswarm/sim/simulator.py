@@ -139,7 +139,7 @@ class Simulator:
         """One tick with a Python controller: the same phases as the compiled loop."""
         w = self.world
         g = self.grid
-        n_dirty = grid_sync(g, w.pos, w.present, self._dirty, self._dirty_flag, 0)
+        n_dirty = grid_sync(g, w.pos, w.present, self._dirty, self._dirty_flag, g.state[2])
         radio_phase(w.tick, self.cfg, g, w.pos, w.alive, w.present, w.tx_phase, w.out_on,
                     w.out_type, w.out_data, w.in_count, w.in_type, w.in_data, w.in_dist,
                     w.counters, self.rng_radio)
