@@ -8,8 +8,11 @@ from typing import Any
 import numpy as np
 
 from etswarm.experiments.reproduce import (
+    CUT_HORIZONTAL,
+    CUT_VERTICAL,
     PAPER_T_FORMATION_S,
     comparison_rows,
+    damage_snapshots,
     paper_spec_text,
     write_paper_report,
 )
@@ -30,6 +33,8 @@ def snapshot(t_s: float, n: int, stable: int) -> dict[str, Any]:
 
 def summary(params: dict[str, Any]) -> dict[str, Any]:
     seed = params["seed"]
+    if params.get("damage"):
+        return damaged_summary(seed)
     formed = seed != 3
     stuck = 2 if seed == 1 else 0
     t_form = 9000.0 + 500 * seed if formed else None
@@ -46,10 +51,27 @@ def summary(params: dict[str, Any]) -> dict[str, Any]:
     }
 
 
+def damaged_summary(seed: int) -> dict[str, Any]:
+    """A T formed at 1 h, cut at 1 h 1 min and 2 h (seed 0 only), re-formed by 3 h."""
+    cuts = [3660.0, 7200.0] if seed == 0 else []
+    return {
+        "shape": "T", "formed": True, "formation_time_s": 3600.0, "settled": seed == 0,
+        "jaccard": 1.0, "states": {"Stable": 10},
+        "components": [
+            {"robots": 6, "formed": True, "jaccard": 1.0, "census_count": 6},
+            {"robots": 4, "formed": True, "jaccard": 1.0, "census_count": 3},
+        ],
+        "events": [{"t_s": t, "kind": "damage", "spec": "split"} for t in cuts],
+        "snapshots": [snapshot(600.0 * k, 10, 10) for k in range(19)],
+    }
+
+
 def test_report_from_records(tmp_path: Path) -> None:
-    (tmp_path / "paper.toml").write_text(paper_spec_text(4, 1, 14400.0, damage=False))
+    (tmp_path / "paper.toml").write_text(paper_spec_text(4, 2, 14400.0, damage=True))
     spec = load_spec(tmp_path / "paper.toml")
-    assert [p.get("shape") for p in spec.points] == ["T", "dumbbell", "starfish"]
+    assert [p.get("shape") for p in spec.points] == ["T", "dumbbell", "starfish", "T"]
+    assert spec.points[3]["damage"] == [CUT_VERTICAL, CUT_HORIZONTAL]
+    assert spec.points[3]["max_time_s"] == 3 * 14400.0
     store = RunStore(tmp_path / "sweep")
     store.create()
     for run in spec.runs():
@@ -60,7 +82,12 @@ def test_report_from_records(tmp_path: Path) -> None:
     text = path.read_text()
     figures = sorted(p.name for p in (tmp_path / "figures").glob("*.png"))
     assert figures == ["T_formation_times.png", "fig10_starfish.png", "fig5_T_formation.png",
-                       "fig6_T_loss.png", "fig9_dumbbell.png"]
+                       "fig6_T_loss.png", "fig8_T_regeneration.png", "fig9_dumbbell.png"]
+    assert "| `T` cut twice (each cut a minute after the shape formed) | 1 of 2 runs got" in text
+    assert "| every remnant re-formed its scaled `T` after the second cut | 1 of 2 |" in text
+    assert "| census of the remnants: exact counts | 1 of 2 (errors from -1 to +0) |" in text
+    assert "Shown: seed 0, cut at 1 h 1 min 0 s, 2 h 0 min 0 s; every remnant re-formed: yes." \
+        in text
     assert "| `T` formed within the time limit (loss 0.2) | 3 of 4 seeds | yes (one run shown) |" \
         in text
     # formed seeds 0, 1, 2: 9000, 9500, 10000 s -> median 9500 s = 2 h 38 min 20 s
@@ -87,3 +114,11 @@ def test_comparison_rows_ratio() -> None:
     assert rows["ratio ours / paper (median)"] == "1.00"
     assert rows["`T` robots not Stable at the end (median, max)"] == "0, 0"
     assert np.isclose(float(rows["ratio ours / paper (median)"]), 1.0)
+
+
+def test_damage_snapshots_bracket_each_cut() -> None:
+    record = {"summary": damaged_summary(0)}
+    times = [s["t_s"] for s in damage_snapshots(record)]
+    # before/after the cut at 3660 s, before/after 7200 s, the middle of the rest, the end
+    assert times == [3600.0, 4200.0, 6600.0, 7800.0, 9000.0, 10800.0]
+    assert len(damage_snapshots({"summary": damaged_summary(1)})) == 6

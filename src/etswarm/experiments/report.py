@@ -142,7 +142,8 @@ def plot_formation_time(ok: pd.DataFrame, swept: Sequence[str], path: Path) -> P
         span = (xs.max() - xs.min()) if xs.size > 1 else 1.0
         jitter = rng.uniform(-0.01, 0.01, size=x.size) * span
         points = ax.scatter(x + jitter, t, s=12, alpha=0.4)
-        colour = tuple(points.get_facecolor()[0][:3])  # opaque line, translucent dots
+        face: Any = points.get_facecolor()
+        colour = tuple(face[0][:3])  # opaque line, translucent dots
         q1, med, q3 = (np.array([np.percentile(t[x == v], q) for v in xs]) for q in (25, 50, 75))
         ax.plot(xs, med, "-o", color=colour, label=label or "median", markersize=4)
         ax.fill_between(xs, q1, q3, color=colour, alpha=0.15)

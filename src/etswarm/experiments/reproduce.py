@@ -35,6 +35,11 @@ PAPER_T_FORMATION_S = 2 * 3600 + 50 * 60 + 8
 #: Seconds of simulated time between two snapshots of a run.
 SNAPSHOT_EVERY_S = 120.0
 
+#: Fig. 8's cuts: vertically through the stem of the formed `T`, a minute after it formed;
+#: then horizontally, a minute after every remnant re-formed (etswarm.damage syntax).
+CUT_VERTICAL = "split x=-1.25 at=formed+60"
+CUT_HORIZONTAL = "split y=0.43 at=formed+60"
+
 #: Task of the reproduction sweep.
 PAPER_TASK = "etswarm.experiments.reproduce:paper_run"
 
@@ -72,7 +77,11 @@ def paper_run(params: dict[str, Any]) -> dict[str, Any]:
 
 
 def _run_config(params: dict[str, Any]) -> Any:
-    """The runner's RunConfig from run_experiment-style flat params (same key rules)."""
+    """The runner's RunConfig from run_experiment-style flat params.
+
+    Keys: run_experiment's ``RUN_KEYS`` and any other RunConfig field (``damage``, as a
+    list of ``KIND REGION [at=TIME]`` strings), ET parameters as ``et_<name>``.
+    """
     from etswarm.algorithm.api import RUN_KEYS
     from etswarm.algorithm.params import ETParams
     from etswarm.algorithm.run import RunConfig
@@ -81,9 +90,10 @@ def _run_config(params: dict[str, Any]) -> Any:
     run_kwargs: dict[str, Any] = {}
     et_kwargs: dict[str, Any] = {}
     et_names = set(ETParams.__dataclass_fields__)
+    run_names = (set(RUN_KEYS) | set(RunConfig.__dataclass_fields__)) - {"et"}
     for key, value in params.items():
-        if key in RUN_KEYS:
-            run_kwargs[key] = value
+        if key in run_names:
+            run_kwargs[key] = tuple(value) if isinstance(value, list) else value
         elif key.startswith("et_") and key[3:] in et_names:
             et_kwargs[key[3:]] = value
         else:
@@ -110,10 +120,10 @@ def damage_supported() -> bool:
     from etswarm.errors import EtswarmError
 
     try:
-        from etswarm.algorithm.api import RUN_KEYS
+        from etswarm.algorithm.run import RunConfig
     except ImportError as err:
         raise EtswarmError(f"the ET runner cannot be imported ({err})") from err
-    return "damage" in RUN_KEYS
+    return "damage" in RunConfig.__dataclass_fields__
 
 
 def paper_spec_text(seeds: int, shape_seeds: int, max_time_s: float, damage: bool) -> str:
@@ -146,12 +156,15 @@ def paper_spec_text(seeds: int, shape_seeds: int, max_time_s: float, damage: boo
             f"seeds = {{start = 0, count = {shape_seeds}}}",
         ]
     if damage:
+        # Regions are in lattice spacings from the gene's (0, 0) site: x = -1.25 runs down
+        # the middle of the T's stem, y = 0.43 between its rows Y = 0 and Y = 1.
         lines += [
             "",
             "[[cases]]",
             'figure = "8"',
             'shape = "T"',
-            'damage = ["split x=0 after=60", "split y=0 after=60"]',
+            f'damage = ["{CUT_VERTICAL}", "{CUT_HORIZONTAL}"]',
+            f"max_time_s = {3 * float(max_time_s)}",
             f"seeds = {{start = 0, count = {shape_seeds}}}",
         ]
     return "\n".join(lines) + "\n"
@@ -313,7 +326,7 @@ def _legend(fig: Figure, states: Sequence[int], outside: bool = False) -> None:
         for s in sorted(set(states))
         if 0 <= s < len(names)
     ]
-    where = "outside lower center" if outside else "lower center"
+    where: Any = "outside lower center" if outside else "lower center"
     fig.legend(handles=handles, loc=where, ncol=len(handles), fontsize=8, frameon=False)
 
 
@@ -325,9 +338,19 @@ def _pick_snapshots(snaps: Sequence[dict[str, Any]], count: int) -> list[dict[st
     return [snaps[i] for i in dict.fromkeys(index.tolist())]
 
 
-def figure_sequence(record: dict[str, Any], title: str, path: Path, panels: int = 6) -> Path:
-    """A row of snapshots of one run (Figs. 5 and 8)."""
-    snaps = _pick_snapshots(record["summary"]["snapshots"], panels)
+def figure_sequence(
+    record: dict[str, Any],
+    title: str,
+    path: Path,
+    panels: int = 6,
+    snaps: Sequence[dict[str, Any]] | None = None,
+) -> Path:
+    """Snapshots of one run on a grid of 3 columns, in one frame (Figs. 5 and 8).
+
+    ``snaps`` default to ``panels`` snapshots evenly spread over the run.
+    """
+    if snaps is None:
+        snaps = _pick_snapshots(record["summary"]["snapshots"], panels)
     cols = min(3, len(snaps))
     rows = math.ceil(len(snaps) / cols)
     fig = Figure(figsize=(3.4 * cols, 3.4 * rows + 0.9), layout="constrained")
@@ -336,7 +359,8 @@ def figure_sequence(record: dict[str, Any], title: str, path: Path, panels: int 
     limits = snapshot_limits(snaps)
     for number, (ax, snap) in enumerate(zip(axes, snaps, strict=False)):
         draw_snapshot(ax, snap, limits=limits)
-        ax.set_title(f"({chr(ord('a') + number)}) {ax.get_title()}", fontsize=8)
+        label = f", {snap['label']}" if snap.get("label") else ""
+        ax.set_title(f"({chr(ord('a') + number)}) {ax.get_title()}{label}", fontsize=8)
         states += snap["state"]
     for ax in axes[len(snaps):]:
         ax.set_axis_off()
@@ -466,16 +490,70 @@ def comparison_rows(records: Sequence[dict[str, Any]]) -> list[tuple[str, str, s
     regen = [r for r in records if r["params"].get("figure") == "8"]
     if regen:
         ok = _ok(records, "8")
-        all_formed = [
-            r for r in ok
-            if r["summary"].get("components")
-            and all(c.get("formed") for c in r["summary"]["components"])
-        ]
+        cuts = [len(damage_times(r)) for r in ok]
+        both = sum(1 for c in cuts if c >= 2)
+        reformed = [r for r in ok if len(damage_times(r)) >= 2 and _settled(r)]
         rows.append(
-            ("`T` cut twice: every remnant re-formed", f"{len(all_formed)} of {len(regen)}",
-             "yes (one remnant shown)")
+            ("`T` cut twice (each cut a minute after the shape formed)",
+             f"{both} of {len(regen)} runs got both cuts", "yes (one run shown)")
         )
+        rows.append(
+            ("every remnant re-formed its scaled `T` after the second cut",
+             f"{len(reformed)} of {len(regen)}", "yes (Fig. 8)")
+        )
+        errors = [
+            int(c["census_count"]) - int(c["robots"])
+            for r in ok
+            if damage_times(r)
+            for c in r["summary"].get("components") or []
+            if c.get("census_count") is not None
+        ]
+        if errors:
+            exact = sum(1 for e in errors if e == 0)
+            rows.append(
+                ("census of the remnants: exact counts", f"{exact} of {len(errors)}"
+                 f" (errors from {min(errors):+d} to {max(errors):+d})", "-")
+            )
     return rows
+
+
+def damage_times(record: dict[str, Any]) -> list[float]:
+    """Simulated times (s) of the damage events of a run."""
+    events = record["summary"].get("events") or []
+    return [float(e["t_s"]) for e in events if e.get("kind") == "damage"]
+
+
+def _settled(record: dict[str, Any]) -> bool:
+    summary = record["summary"]
+    if "settled" in summary:
+        return bool(summary["settled"])
+    comps = summary.get("components") or []
+    return bool(comps) and all(c.get("formed") for c in comps)
+
+
+def damage_snapshots(record: dict[str, Any], panels: int = 6) -> list[dict[str, Any]]:
+    """Snapshots telling a damage story: before and after each cut, and the end.
+
+    Without damage events, ``panels`` snapshots evenly spread.
+    """
+    snaps = record["summary"]["snapshots"]
+    cuts = damage_times(record)
+    if not cuts:
+        return _pick_snapshots(snaps, panels)
+    times = np.asarray([s["t_s"] for s in snaps], dtype=float)
+    chosen: dict[int, str] = {}
+    for number, cut in enumerate(cuts, start=1):
+        before = np.nonzero(times < cut)[0]
+        after = np.nonzero(times > cut)[0]
+        if before.size:
+            chosen.setdefault(int(before[-1]), f"before cut {number}")
+        if after.size:
+            chosen.setdefault(int(after[0]), f"after cut {number}")
+    chosen.setdefault(len(snaps) - 1, "end")
+    if len(chosen) < panels and times[-1] > cuts[-1]:
+        middle = (cuts[-1] + times[-1]) / 2
+        chosen.setdefault(int(np.argmin(np.abs(times - middle))), "regrowing")
+    return [{**snaps[i], "label": chosen[i]} for i in sorted(chosen)][:panels]
 
 
 def write_paper_report(out_dir: str | Path, notes: Sequence[str] = ()) -> Path:
@@ -519,16 +597,36 @@ def write_paper_report(out_dir: str | Path, notes: Sequence[str] = ()) -> Path:
         lines += ["![Fig. 6](figures/fig6_T_loss.png)", ""]
     regen = _ok(records, "8")
     if regen:
-        best = _representative(regen)
-        assert best is not None
+        best = max(
+            regen,
+            key=lambda r: (len(damage_times(r)), _settled(r), -r["params"]["seed"]),
+        )
+        cuts = damage_times(best)
         lines += ["## Fig. 8: `T` cut vertically, then horizontally", ""]
-        figure_sequence(best, f"T cut twice, seed {best['params']['seed']}",
-                        figures / "fig8_T_regeneration.png", panels=6)
-        lines += ["![Fig. 8](figures/fig8_T_regeneration.png)", ""]
+        lines.append(
+            f"Cuts: `{CUT_VERTICAL}`, then `{CUT_HORIZONTAL}` (regions in lattice spacings"
+            " from the gene's origin; the cut-off side is moved out of radio range)."
+        )
+        if cuts:
+            when = ", ".join(format_duration(t) for t in cuts)
+            lines.append(
+                f"Shown: seed {best['params']['seed']}, cut at {when};"
+                f" every remnant re-formed: {'yes' if _settled(best) else 'no'}."
+            )
+            figure_sequence(best, f"T cut twice, seed {best['params']['seed']}",
+                            figures / "fig8_T_regeneration.png", snaps=damage_snapshots(best))
+            lines += ["", "![Fig. 8](figures/fig8_T_regeneration.png)", ""]
+        else:
+            lines += [
+                "No run was cut: a cut comes a minute after the `T` formed, and no run formed"
+                " within the time limit.",
+                "",
+            ]
     for figure, shape in (("9", "dumbbell"), ("10", "starfish")):
-        best = _representative(_ok(records, figure))
-        if best is None:
+        chosen = _representative(_ok(records, figure))
+        if chosen is None:
             continue
+        best = chosen
         name = f"fig{figure}_{shape}.png"
         state = "formed" if best["summary"].get("formed") else "not formed"
         figure_shape(best, f"{shape}, seed {best['params']['seed']} ({state})", figures / name)
