@@ -48,7 +48,7 @@ from etswarm.sim.radio import radio_phase
 @njit(cache={cache})
 def run_ticks(n, tick0, cfg, grid, pos, heading, motor, led, alive, present, speed,
               turn_rate, tx_phase, out_on, out_type, out_data, in_count, in_type, in_data,
-              in_dist, counters, dirty, dirty_flag, spare, rng_motion, rng_radio, rng_ctl,
+              in_dist, counters, dirty, dirty_flag, spare, trig, rng_motion, rng_radio, rng_ctl,
               mem):
     if n <= 0:
         return 0
@@ -61,7 +61,7 @@ def run_ticks(n, tick0, cfg, grid, pos, heading, motor, led, alive, present, spe
         controller_step(tick, alive, in_count, in_type, in_data, in_dist, motor, led,
                         out_on, out_type, out_data, mem, rng_ctl)
         n_dirty = move_phase(cfg, grid, pos, heading, motor, alive, present, speed,
-                             turn_rate, dirty, dirty_flag, n_dirty, rng_motion)
+                             turn_rate, dirty, dirty_flag, n_dirty, trig, rng_motion)
         n_dirty = collide_phase(cfg, grid, pos, present, dirty, dirty_flag, n_dirty, spare,
                                 counters)
         if stop[0] != 0:

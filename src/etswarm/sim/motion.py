@@ -32,14 +32,20 @@ def clamp_to_arena(v, radius, arena):
 
 @njit(cache=True)
 def move_phase(cfg, grid, pos, heading, motor, alive, present, speed, turn_rate,
-               dirty, dirty_flag, n_dirty, rng):
+               dirty, dirty_flag, n_dirty, trig, rng):
     """Advance every robot whose motor is on by one tick; returns the work-list length.
 
     The collision work list ``dirty`` holds grid slots (flags by slot in ``dirty_flag``).
+    ``trig`` (N, 6) float64 caches, per robot, (heading, cos, sin) of the heading and
+    (turn_rate, cos, sin) of one tick's turn, so a tick needs no trigonometry; an entry is
+    recomputed whenever the heading or turn rate differs from the cached one (outside
+    edits, noise). Start it filled with NaN.
     """
     dt = cfg.dt
     r = cfg.radius
     leg = cfg.leg_angle
+    cos_leg = np.cos(leg)
+    sin_leg = np.sin(leg)
     walls = cfg.arena > 0.0
     two_pi = 2.0 * np.pi
     sx, sy, slot, sbx, sby = grid.sx, grid.sy, grid.slot, grid.sbx, grid.sby
@@ -51,28 +57,50 @@ def move_phase(cfg, grid, pos, heading, motor, alive, present, speed, turn_rate,
         if m == 0 or not alive[i] or not present[i]:
             continue
         h = heading[i]
+        if trig[i, 0] != h:
+            trig[i, 0] = h
+            trig[i, 1] = np.cos(h)
+            trig[i, 2] = np.sin(h)
+        ch = trig[i, 1]
+        sh = trig[i, 2]
         if m == 1:
             step = speed[i] * dt
             if cfg.speed_noise > 0.0:
                 step *= 1.0 + cfg.speed_noise * rng.standard_normal()
-            x = pos[i, 0] + step * np.cos(h)
-            y = pos[i, 1] + step * np.sin(h)
+            x = pos[i, 0] + step * ch
+            y = pos[i, 1] + step * sh
             h_new = h
             travel = abs(step)
         else:
-            dth = turn_rate[i] * dt
-            if m == 2:
-                a = h + leg
-            else:
-                a = h - leg
+            rate = turn_rate[i]
+            if trig[i, 3] != rate:
+                trig[i, 3] = rate
+                trig[i, 4] = np.cos(rate * dt)
+                trig[i, 5] = np.sin(rate * dt)
+            cd = trig[i, 4]
+            sd = trig[i, 5]
+            dth = rate * dt
+            if m == 3:  # clockwise about the right leg
+                sd = -sd
                 dth = -dth
-            # the centre rotates by dth about the leg at pos + r*(cos a, sin a)
-            x = pos[i, 0] + r * (np.cos(a) - np.cos(a + dth))
-            y = pos[i, 1] + r * (np.sin(a) - np.sin(a + dth))
+                sl = -sin_leg
+            else:  # counter-clockwise about the left leg
+                sl = sin_leg
+            # leg direction a = heading +- leg_angle; the centre rotates by dth about
+            # the leg at pos + r*(cos a, sin a): new centre = leg - r*(cos(a+dth), ...)
+            ca = ch * cos_leg - sh * sl
+            sa = sh * cos_leg + ch * sl
+            ca2 = ca * cd - sa * sd
+            sa2 = sa * cd + ca * sd
+            x = pos[i, 0] + r * (ca - ca2)
+            y = pos[i, 1] + r * (sa - sa2)
             h_new = h + dth
             travel = r * abs(dth)  # arc length >= chord
+            ch, sh = ch * cd - sh * sd, sh * cd + ch * sd
         if cfg.heading_noise > 0.0:
             h_new += cfg.heading_noise * rng.standard_normal()
+            ch = np.cos(h_new)
+            sh = np.sin(h_new)
         if h_new > np.pi:
             h_new -= two_pi
         elif h_new <= -np.pi:
@@ -83,6 +111,9 @@ def move_phase(cfg, grid, pos, heading, motor, alive, present, speed, turn_rate,
         pos[i, 0] = x
         pos[i, 1] = y
         heading[i] = h_new
+        trig[i, 0] = h_new
+        trig[i, 1] = ch
+        trig[i, 2] = sh
         s = slot[i]
         sx[s] = x
         sy[s] = y

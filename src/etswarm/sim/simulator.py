@@ -93,6 +93,7 @@ class Simulator:
         self._dirty = np.zeros(n, dtype=np.int32)
         self._dirty_flag = np.zeros(n, dtype=np.uint8)
         self._spare = np.zeros(n, dtype=np.int32)
+        self._trig = np.full((n, 6), np.nan)  # motion's cached cos/sin (see move_phase)
         self.fast = is_fast_controller(controller)
         if self.fast:
             mem = controller.mem
@@ -131,7 +132,8 @@ class Simulator:
             int(n), int(w.tick), self.cfg, self.grid, w.pos, w.heading, w.motor, w.led,
             w.alive, w.present, w.speed, w.turn_rate, w.tx_phase, w.out_on, w.out_type,
             w.out_data, w.in_count, w.in_type, w.in_data, w.in_dist, w.counters,
-            self._dirty, self._dirty_flag, self._spare, self.rng_motion, self.rng_radio,
+            self._dirty, self._dirty_flag, self._spare, self._trig, self.rng_motion,
+            self.rng_radio,
             self.rng_controller, self.controller.mem,
         ))
 
@@ -149,7 +151,7 @@ class Simulator:
         self.controller.step(view)
         n_dirty = move_phase(self.cfg, g, w.pos, w.heading, w.motor, w.alive, w.present,
                              w.speed, w.turn_rate, self._dirty, self._dirty_flag, n_dirty,
-                             self.rng_motion)
+                             self._trig, self.rng_motion)
         collide_phase(self.cfg, g, w.pos, w.present, self._dirty, self._dirty_flag, n_dirty,
                       self._spare, w.counters)
         w.tick += 1
