@@ -81,7 +81,7 @@ from etswarm.algorithm.release import queued_rule
 from etswarm.algorithm.search import search_rule
 
 
-@njit(cache=True)
+@njit
 def table_slot(i, sender, nb):  # type: ignore[no-untyped-def]
     """Index of ``sender``'s row in robot i's neighbour table; a new robot takes a free
     row, else the one heard longest ago (returned negated minus one: -(row) - 1)."""
@@ -106,7 +106,7 @@ def table_slot(i, sender, nb):  # type: ignore[no-untyped-def]
     return -row - 1
 
 
-@njit(cache=True, inline="always")
+@njit(inline="always")
 def near_epoch(own, wrapped, modulus):  # type: ignore[no-untyped-def]
     """The epoch nearest to ``own`` whose value mod ``modulus`` is ``wrapped``."""
     delta = (wrapped - own) % modulus
@@ -115,7 +115,7 @@ def near_epoch(own, wrapped, modulus):  # type: ignore[no-untyped-def]
     return own + delta
 
 
-@njit(cache=True)
+@njit
 def ingest(i, k, tick, ri, in_type, in_data, in_dist, nb, nb_dist):  # type: ignore[no-untyped-def]
     """Store message k of robot i's inbox in its neighbour table (layouts in ``messages``).
 
@@ -169,7 +169,7 @@ def ingest(i, k, tick, ri, in_type, in_data, in_dist, nb, nb_dist):  # type: ign
     return kind
 
 
-@njit(cache=True)
+@njit
 def encode(i, tick, ri, out_on, out_type, out_data):  # type: ignore[no-untyped-def]
     """Write robot i's next broadcast (layouts in ``messages``): its election message while
     electing; for a while after adopting a scaled target, every other period its
@@ -220,7 +220,7 @@ def encode(i, tick, ri, out_on, out_type, out_data):  # type: ignore[no-untyped-
         out_data[i, 8] = (ri[i, R_RELEASED] >> 8) & 0xFF
 
 
-@njit(cache=True)
+@njit
 def et_step(  # type: ignore[no-untyped-def]
     tick,
     alive,

@@ -68,7 +68,7 @@ class ETController:
         self.gene_nn = np.zeros((INITIAL_SLOTS, *self.grid_shape), dtype=np.int8)
         self.slot_info = np.zeros((INITIAL_SLOTS, SLOT_FIELDS), dtype=np.int64)
         self.slot_cells: list[np.ndarray] = []
-        self.ci, self.cf = et.pack(ticks_per_s, 0, self.x0, self.y0, diameter_hops=int(span.sum()))
+        self.ci, self.cf = et.pack(ticks_per_s, self.x0, self.y0, diameter_hops=int(span.sum()))
         self.add_target(target, release_limit=max(0, len(target) - 3), tx=0, ty=0)
 
     # -- targets -----------------------------------------------------------------------

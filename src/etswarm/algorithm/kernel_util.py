@@ -39,13 +39,13 @@ DIR_X = (0, 1, 1, 0, -1, -1)
 DIR_Y = (1, 1, 0, -1, -1, 0)
 
 
-@njit(cache=True, inline="always")
+@njit(inline="always")
 def is_placed(state):  # type: ignore[no-untyped-def]
     """True for the states that hold a lattice tag."""
     return state >= INACTIVE
 
 
-@njit(cache=True, inline="always")
+@njit(inline="always")
 def direction_index(dx, dy):  # type: ignore[no-untyped-def]
     """Index 0..5 of the lattice direction (dx, dy), or -1 if not a neighbour offset."""
     if dx == 0 and dy == 1:
@@ -63,7 +63,7 @@ def direction_index(dx, dy):  # type: ignore[no-untyped-def]
     return -1
 
 
-@njit(cache=True, inline="always")
+@njit(inline="always")
 def lattice_distance(ax, ay, bx, by):  # type: ignore[no-untyped-def]
     """Distance between tags (ax, ay) and (bx, by) in lattice spacings."""
     dy = ay - by
@@ -71,7 +71,7 @@ def lattice_distance(ax, ay, bx, by):  # type: ignore[no-untyped-def]
     return math.sqrt(dx * dx + (dy * HALF_SQRT3) ** 2)
 
 
-@njit(cache=True, inline="always")
+@njit(inline="always")
 def gene_flag_at(gene_flag, ci, x, y):  # type: ignore[no-untyped-def]
     gx = x - ci[C_GENE_X0]
     gy = y - ci[C_GENE_Y0]
@@ -80,7 +80,7 @@ def gene_flag_at(gene_flag, ci, x, y):  # type: ignore[no-untyped-def]
     return gene_flag[gx, gy]
 
 
-@njit(cache=True, inline="always")
+@njit(inline="always")
 def gene_nn_at(gene_nn, ci, x, y):  # type: ignore[no-untyped-def]
     gx = x - ci[C_GENE_X0]
     gy = y - ci[C_GENE_Y0]
@@ -89,7 +89,7 @@ def gene_nn_at(gene_nn, ci, x, y):  # type: ignore[no-untyped-def]
     return gene_nn[gx, gy]
 
 
-@njit(cache=True)
+@njit
 def set_state(i, ri, state, tick):  # type: ignore[no-untyped-def]
     ri[i, R_STATE] = state
     ri[i, R_SINCE] = tick

@@ -44,26 +44,26 @@ EPOCH_SHIFT = 3
 PAYLOAD_BYTES = 9
 
 
-@njit(cache=True, inline="always")
+@njit(inline="always")
 def put_u16(buf, offset, value):  # type: ignore[no-untyped-def]
     """Write ``value`` (0..65535) little-endian at ``buf[offset:offset+2]``."""
     buf[offset] = value & 0xFF
     buf[offset + 1] = (value >> 8) & 0xFF
 
 
-@njit(cache=True, inline="always")
+@njit(inline="always")
 def get_u16(buf, offset):  # type: ignore[no-untyped-def]
     """Read a little-endian uint16 from ``buf[offset:offset+2]``."""
     return int(buf[offset]) | (int(buf[offset + 1]) << 8)
 
 
-@njit(cache=True, inline="always")
+@njit(inline="always")
 def put_i8(buf, offset, value):  # type: ignore[no-untyped-def]
     """Write a signed byte (-128..127) at ``buf[offset]`` (two's complement)."""
     buf[offset] = value & 0xFF
 
 
-@njit(cache=True, inline="always")
+@njit(inline="always")
 def get_i8(buf, offset):  # type: ignore[no-untyped-def]
     """Read a signed byte from ``buf[offset]``."""
     v = int(buf[offset])

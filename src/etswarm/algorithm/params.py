@@ -21,25 +21,22 @@ C_TICKS_SETTLE = 5  # a searching robot stands still this long before taking a s
 C_TICKS_COOLDOWN = 6  # after a rejected site, ignore candidates this long
 C_TICKS_YIELD_MAX = 7  # give up yielding to another searcher after this long
 C_TICKS_MOVE_FRESH = 8  # distance readings used for steering must be this recent
-C_RELEASE_LIMIT = 9  # robots the repository releases (cells of the target - 3 seeds)
-C_GENE_X0 = 10  # tag X of gene grid column 0
-C_GENE_Y0 = 11  # tag Y of gene grid row 0
-C_EVAL_EVERY = 12  # placed robots re-evaluate their state every this many ticks
-C_TICKS_CLEAR = 13  # a Queued robot leaves only after hearing no searcher this long
-C_TICKS_REGEN_QUIET = 14  # election/census quiet time before a robot declares itself Leader
-N_CI = 15
+C_GENE_X0 = 9  # tag X of gene grid column 0
+C_GENE_Y0 = 10  # tag Y of gene grid row 0
+C_EVAL_EVERY = 11  # placed robots re-evaluate their state every this many ticks
+C_TICKS_CLEAR = 12  # a Queued robot leaves only after hearing no searcher this long
+C_TICKS_REGEN_QUIET = 13  # election/census quiet time before a robot declares itself Leader
+N_CI = 14
 
 F_SPACING = 0  # lattice spacing d
-F_NB_RADIUS = 1  # a placed robot nearer than this is a lattice neighbour
-F_PAIR_TOL = 2  # two references within this of d trigger a site candidate
-F_CONSIST_TOL = 3  # every heard placed robot must match the candidate within this
-F_FOLLOW_BAND = 4  # edge-following keeps the nearest distance within d +- this
-F_YIELD_DIST = 5  # yield to a lower-ID searcher nearer than this
-F_FOLLOW_OFFSET = 6  # edge-following aims at d + this (clearance for the bodies)
-F_CLOSING = 7  # assumed worst-case closing speed between readings, mm per tick
-F_CLEARANCE = 8  # a searcher turns away from any other robot nearer than this
-F_BALANCE_TOL = 9  # the two references' distances may differ by at most this
-N_CF = 10
+F_PAIR_TOL = 1  # two references within this of d trigger a site candidate
+F_CONSIST_TOL = 2  # every heard placed robot must match the candidate within this
+F_YIELD_DIST = 3  # yield to a lower-ID searcher nearer than this
+F_FOLLOW_OFFSET = 4  # edge-following aims at d + this (clearance for the bodies)
+F_CLOSING = 5  # assumed worst-case closing speed between readings, mm per tick
+F_CLEARANCE = 6  # a searcher turns away from any other robot nearer than this
+F_BALANCE_TOL = 7  # the two references' distances may differ by at most this
+N_CF = 8
 
 
 #: Parameters that may be zero (all others must be positive).
@@ -51,7 +48,6 @@ class ETParams:
     """Tunable constants of the ET controller (defaults suit DESIGN §2 robots)."""
 
     spacing_mm: float = 40.0
-    neighbour_radius_factor: float = 1.7
     neighbour_timeout_s: float = 2.5
     danger_timeout_s: float = 8.0
     quasi_s: float = 4.0
@@ -64,7 +60,6 @@ class ETParams:
     steer_fresh_s: float = 3.0
     pair_tol_mm: float = 4.0
     consistency_tol_mm: float = 16.0
-    follow_band_mm: float = 3.0
     follow_offset_mm: float = 0.0
     closing_speed_mm_s: float = 5.0
     clearance_mm: float = 38.0
@@ -83,14 +78,12 @@ class ETParams:
                     raise EtswarmError(f"ET parameter {f.name} must be >= 0, got {value}")
             elif not value > 0:
                 raise EtswarmError(f"ET parameter {f.name} must be > 0, got {value}")
-        if self.spacing_mm * self.neighbour_radius_factor >= self.spacing_mm * 3**0.5:
-            raise EtswarmError(
-                "ET parameter neighbour_radius_factor must be below sqrt(3) so the second "
-                "lattice ring is not counted as neighbours"
-            )
 
     def pack(
-        self, ticks_per_s: int, release_limit: int, gene_x0: int, gene_y0: int,
+        self,
+        ticks_per_s: int,
+        gene_x0: int,
+        gene_y0: int,
         diameter_hops: int = 10,
     ) -> tuple[np.ndarray, np.ndarray]:
         """Return ``(ci, cf)``: int64 (N_CI,) and float64 (N_CF,) arrays for the kernel.
@@ -113,7 +106,6 @@ class ETParams:
         ci[C_TICKS_COOLDOWN] = ticks(self.rejected_cooldown_s)
         ci[C_TICKS_YIELD_MAX] = ticks(self.yield_max_s)
         ci[C_TICKS_MOVE_FRESH] = ticks(self.steer_fresh_s)
-        ci[C_RELEASE_LIMIT] = release_limit
         ci[C_GENE_X0] = gene_x0
         ci[C_GENE_Y0] = gene_y0
         ci[C_EVAL_EVERY] = self.eval_every_ticks
@@ -123,10 +115,8 @@ class ETParams:
         )
         cf = np.zeros(N_CF, dtype=np.float64)
         cf[F_SPACING] = self.spacing_mm
-        cf[F_NB_RADIUS] = self.spacing_mm * self.neighbour_radius_factor
         cf[F_PAIR_TOL] = self.pair_tol_mm
         cf[F_CONSIST_TOL] = self.consistency_tol_mm
-        cf[F_FOLLOW_BAND] = self.follow_band_mm
         cf[F_YIELD_DIST] = self.yield_distance_mm
         cf[F_FOLLOW_OFFSET] = self.follow_offset_mm
         cf[F_CLOSING] = self.closing_speed_mm_s / ticks_per_s

@@ -38,7 +38,6 @@ from etswarm.algorithm.params import (
     C_TICKS_DANGER,
     C_TICKS_NB_FRESH,
     C_TICKS_QUASI,
-    F_NB_RADIUS,
 )
 from etswarm.algorithm.regeneration import start_election
 
@@ -46,11 +45,10 @@ from etswarm.algorithm.regeneration import start_election
 INACTIVE_PATIENCE_TICKS = 31 * 60
 
 
-@njit(cache=True)
+@njit
 def placed_rule(i, tick, ri, nb, nb_dist, ci, cf):  # type: ignore[no-untyped-def]
     """Inactive -> Active -> Quasi/Stable, and Stable -> Danger (paper Table 1)."""
     fresh = ci[C_TICKS_NB_FRESH]
-    radius = cf[F_NB_RADIUS]
     x = ri[i, R_TAG_X]
     y = ri[i, R_TAG_Y]
     ts = ri[i, R_TS]
@@ -72,7 +70,7 @@ def placed_rule(i, tick, ri, nb, nb_dist, ci, cf):  # type: ignore[no-untyped-de
             continue  # not a neighbour, or one still holding a tag of an older target
         if st == STABLE and nb[i, m, NB_PREV] == ACTIVE:
             witnessed_stable = True
-        if tick - nb[i, m, NB_LAST] > fresh or nb_dist[i, m] > radius:
+        if tick - nb[i, m, NB_LAST] > fresh:
             continue
         seen_dirs |= 1 << k
         if st == ACTIVE:

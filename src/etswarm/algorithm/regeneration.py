@@ -79,7 +79,7 @@ from etswarm.algorithm.params import C_TICKS_NB_FRESH, C_TICKS_REGEN_QUIET
 TARGET_RELAY_TICKS = 31 * 40
 
 
-@njit(cache=True)
+@njit
 def start_election(i, tick, ri):  # type: ignore[no-untyped-def]
     """Robot i joins the election for epoch R_EPOCH + 1 as a candidate of its own."""
     ri[i, R_PHASE] = PHASE_ELECTING
@@ -94,7 +94,7 @@ def start_election(i, tick, ri):  # type: ignore[no-untyped-def]
     set_state(i, ri, DANGER, tick)
 
 
-@njit(cache=True)
+@njit
 def election_rule(i, tick, ri, nb, ci, stop):  # type: ignore[no-untyped-def]
     """Min-ID flooding with hop counts and subtree counts; the quiet Leader asks for n."""
     epoch = ri[i, R_EPOCH] + 1
@@ -152,7 +152,7 @@ def election_rule(i, tick, ri, nb, ci, stop):  # type: ignore[no-untyped-def]
         stop[0] = 1
 
 
-@njit(cache=True)
+@njit
 def find_slot(slot_info, n, tx, ty):  # type: ignore[no-untyped-def]
     """Slot holding scale(bitmap, n) translated by (tx, ty), or -1."""
     for s in range(1, slot_info.shape[0]):
@@ -166,7 +166,7 @@ def find_slot(slot_info, n, tx, ty):  # type: ignore[no-untyped-def]
     return -1
 
 
-@njit(cache=True)
+@njit
 def adopt_target(i, tick, ri, nb, slot, epoch, leader, gene_flag, gene_nn, slot_info, ci):  # type: ignore[no-untyped-def]
     """Robot i takes target ``slot`` of ``epoch``: stays on its site if the new shape has
     it (the Leader as the Active seed), else goes back to Queued. Its neighbour table is
@@ -205,7 +205,7 @@ def adopt_target(i, tick, ri, nb, slot, epoch, leader, gene_flag, gene_nn, slot_
         ri[i, R_QMIN_SINCE] = tick
 
 
-@njit(cache=True)
+@njit
 def announcement_rule(i, tick, ri, nb, gene_flag, gene_nn, slot_info, ci):  # type: ignore[no-untyped-def]
     """Adopt a heard announcement of the target this robot's election was for; a Leader
     adopts the target the host computed for it."""

@@ -37,7 +37,7 @@ from etswarm.algorithm.params import (
 )
 
 
-@njit(cache=True)
+@njit
 def queued_rule(i, tick, ri, nb, ci, limit):  # type: ignore[no-untyped-def]
     """Lowest-ID release from the repository (floor/min flooding, see ``messages``).
 

@@ -58,7 +58,6 @@ from etswarm.algorithm.params import (
     F_CLEARANCE,
     F_CLOSING,
     F_CONSIST_TOL,
-    F_FOLLOW_BAND,
     F_FOLLOW_OFFSET,
     F_PAIR_TOL,
     F_SPACING,
@@ -67,9 +66,11 @@ from etswarm.algorithm.params import (
 
 #: Readings of a searching robot older than this (ticks) are ignored for steering.
 SEARCHER_FRESH_TICKS = 31
+#: A free site must keep this many consecutive free neighbour sites to stay reachable.
+OPENING_SITES = 3
 
 
-@njit(cache=True)
+@njit
 def site_taken(i, x, y, nb):  # type: ignore[no-untyped-def]
     """Robot i knows that site (x, y) is held: a placed robot in its table holds it (placed
     robots stay put), or a placed robot next to it reports that neighbour site held."""
@@ -86,7 +87,7 @@ def site_taken(i, x, y, nb):  # type: ignore[no-untyped-def]
     return False
 
 
-@njit(cache=True)
+@njit
 def known_held(i, x, y, nb, cx, cy):  # type: ignore[no-untyped-def]
     """Site (x, y) is held, as robot i knows (or is the site (cx, cy) it would take)."""
     if x == cx and y == cy:
@@ -94,29 +95,30 @@ def known_held(i, x, y, nb, cx, cy):  # type: ignore[no-untyped-def]
     return site_taken(i, x, y, nb)
 
 
-@njit(cache=True)
+@njit
 def encloses_a_site(i, cx, cy, nb, gene_flag, ci):  # type: ignore[no-untyped-def]
-    """Taking (cx, cy) would leave a free shape site next to it with no two adjacent free
-    neighbour sites: a robot could no longer reach it between its neighbours."""
+    """Taking (cx, cy) would leave a free shape site next to it without an opening of
+    ``OPENING_SITES`` consecutive free neighbour sites: an edge-following robot, which
+    keeps about d from every placed robot, could no longer get onto it."""
     for k in range(6):
         sx = cx + DIR_X[k]
         sy = cy + DIR_Y[k]
         if gene_flag_at(gene_flag, ci, sx, sy) != 1 or site_taken(i, sx, sy, nb):
             continue
-        prev_free = not known_held(i, sx + DIR_X[5], sy + DIR_Y[5], nb, cx, cy)
-        opening = False
-        for q in range(6):
-            free = not known_held(i, sx + DIR_X[q], sy + DIR_Y[q], nb, cx, cy)
-            if free and prev_free:
-                opening = True
-                break
-            prev_free = free
-        if not opening:
+        run = 0
+        best = 0
+        for q in range(12):  # twice round, so a run may wrap
+            if known_held(i, sx + DIR_X[q % 6], sy + DIR_Y[q % 6], nb, cx, cy):
+                run = 0
+            else:
+                run += 1
+                best = max(best, run)
+        if best < OPENING_SITES:
             return True
     return False
 
 
-@njit(cache=True)
+@njit
 def find_site(i, tick, since, strict, nb, nb_dist, gene_flag, ci, cf):  # type: ignore[no-untyped-def]
     """Localise robot i from its placed neighbours (paper Sec. 4.1).
 
@@ -208,7 +210,7 @@ def find_site(i, tick, since, strict, nb, nb_dist, gene_flag, ci, cf):  # type: 
     return best_err < FAR, best_x, best_y, best_ts
 
 
-@njit(cache=True)
+@njit
 def search_rule(i, tick, new_msgs, ri, nb, nb_dist, motor, gene_flag, gene_nn, ci, cf):  # type: ignore[no-untyped-def]
     """Edge-follow the group clockwise at about d, yield, settle on a free site."""
     d = cf[F_SPACING]
@@ -310,7 +312,6 @@ def search_rule(i, tick, new_msgs, ri, nb, nb_dist, motor, gene_flag, gene_nn, c
             ri[i, R_CAND_Y] = cy
             return
 
-    cf[F_FOLLOW_BAND]
     aim = d + cf[F_FOLLOW_OFFSET]
     # Kilobot orbit (both pivots also move the body forward): pivot away from the group
     # when the last reading of the reference is nearer than the aim, towards it otherwise.
@@ -327,7 +328,7 @@ def search_rule(i, tick, new_msgs, ri, nb, nb_dist, motor, gene_flag, gene_nn, c
         motor[i] = RIGHT
 
 
-@njit(cache=True)
+@njit
 def track_trend(i, ri, nb, nb_dist, slot, base):  # type: ignore[no-untyped-def]
     """Update the distance trend of robot i to the robot in nb slot ``slot``.
 
