@@ -77,3 +77,23 @@ def test_controller_stop_flag_ends_the_chunk_after_that_tick() -> None:
     sim.controller.mem[0][0] = 0
     assert sim.run_ticks(5) == 5
     assert world.tick == 16
+
+
+def test_removed_robots_leave_the_world_and_dead_ones_are_obstacles() -> None:
+    n = 300
+    p = SimParams(arena_mm=45.0 * np.sqrt(n), max_push_passes=1)  # carried work lists
+    sim = Simulator(random_world(n, p, 8), RandomWalk(n), p, 8)
+    sim.run_ticks(200)
+    gone = np.arange(0, n, 3)
+    dead = np.arange(1, n, 3)
+    sim.world.remove(gone)
+    sim.world.kill(dead)
+    frozen = sim.world.pos[gone].copy()
+    sim.run_ticks(600)
+    w = sim.world
+    assert np.array_equal(w.pos[gone], frozen)  # absent robots are never pushed
+    assert not w.motor[dead].any() and not w.out_on[dead].any()
+    assert (w.in_count[dead] == 0).all()
+    stay = w.present
+    limit = 2 * p.body_radius_mm - 0.5
+    assert not cKDTree(w.pos[stay]).query_pairs(limit)

@@ -77,7 +77,7 @@ def collide_phase(cfg, grid, pos, present, dirty, dirty_flag, n_dirty, spare, co
     stale = False
     while n_cur > 0 and passes < cfg.max_passes:
         if stale:
-            rebuild_keeping_list(grid, pos, present, cur, n_cur, dirty_flag)
+            n_cur = rebuild_keeping_list(grid, pos, present, cur, n_cur, dirty_flag)
             stale = False
         # grid geometry (changes only at a rebuild)
         span = grid.geom[G_CELL] + 2.0 * grid.geom[G_MARGIN]
@@ -203,7 +203,7 @@ def collide_phase(cfg, grid, pos, present, dirty, dirty_flag, n_dirty, spare, co
             for k in range(n_cur):
                 dirty[k] = cur[k]
     if stale:
-        rebuild_keeping_list(grid, pos, present, dirty, n_cur, dirty_flag)
+        n_cur = rebuild_keeping_list(grid, pos, present, dirty, n_cur, dirty_flag)
     grid.state[2] = n_cur
     counters[4] += pushes
     counters[6] += examined

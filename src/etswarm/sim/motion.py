@@ -128,5 +128,5 @@ def move_phase(cfg, grid, pos, heading, motor, alive, present, speed, turn_rate,
             dirty[n_dirty] = s
             n_dirty += 1
     if stale:
-        rebuild_keeping_list(grid, pos, present, dirty, n_dirty, dirty_flag)
+        n_dirty = rebuild_keeping_list(grid, pos, present, dirty, n_dirty, dirty_flag)
     return n_dirty

@@ -165,16 +165,21 @@ def grid_rebuild(grid, pos, present):
 @njit(cache=True)
 def rebuild_keeping_list(grid, pos, present, lst, n_list, flag):
     """Rebuild the grid while a work list of slots ``lst[:n_list]`` (flags by slot in
-    ``flag``) is live: the list and its flags are carried over to the new slots."""
+    ``flag``) is live: the list and its flags are carried over to the new slots (robots
+    no longer present are dropped). Returns the new list length."""
     for k in range(n_list):
         s = lst[k]
         flag[s] = 0
         lst[k] = grid.sidx[s]
     grid_rebuild(grid, pos, present)
+    kept = 0
     for k in range(n_list):
         s = grid.slot[lst[k]]
-        lst[k] = s
-        flag[s] = 1
+        if s >= 0:  # robots removed from the world leave the list
+            lst[kept] = s
+            flag[s] = 1
+            kept += 1
+    return kept
 
 
 @njit(cache=True)
@@ -201,7 +206,7 @@ def grid_sync(grid, pos, present, dirty, dirty_flag, n_dirty):
         elif s >= 0:
             changed = True
     if changed:
-        rebuild_keeping_list(grid, pos, present, dirty, n_dirty, dirty_flag)
+        n_dirty = rebuild_keeping_list(grid, pos, present, dirty, n_dirty, dirty_flag)
         for i in range(n):
             if edited[i]:
                 grid.budget[i] = 0.0
