@@ -134,7 +134,7 @@ def report(results: Path, out_dir: Path | None) -> None:
 )
 @click.option(
     "--shape-seeds", type=click.IntRange(min=1), default=None,
-    help="Seeds of the dumbbell, starfish and cut T (default: as many as --seeds).",
+    help="Seeds of the dumbbell and starfish (default: seeds / 2); the cut T gets half.",
 )
 @click.option(
     "--max-time", "max_time_s", type=click.FloatRange(min=1.0), default=4 * 3600.0,

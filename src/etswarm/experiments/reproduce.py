@@ -191,14 +191,14 @@ def reproduce(
 ) -> Reproduction:
     """Run (or resume) the paper's experiments in ``out_dir`` and write figures and report.
 
-    ``seeds`` runs of `T` (the comparison table), ``shape_seeds`` (default: as many) of
-    the dumbbell and the starfish, half as many (at least 1) of the cut `T`, which may run
+    ``seeds`` runs of `T` (the comparison table), ``shape_seeds`` (default: half as many)
+    of the dumbbell and the starfish, half as many (at least 1) of the cut `T`, which may run
     twice as long (``max_time_s`` each). No report is written when the
     sweep was interrupted. Runs recorded as failed are run again.
     """
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
-    shape_seeds = shape_seeds if shape_seeds is not None else seeds
+    shape_seeds = shape_seeds if shape_seeds is not None else max(1, seeds // 2)
     notes: list[str] = []
     damage = damage_supported()
     if not damage:
