@@ -118,10 +118,15 @@ def test_rerun_skips_finished_runs_and_retries_failed_only_on_request(
     assert len(pd.read_parquet(out / "results.parquet")) == 12
 
 
+@pytest.mark.parametrize("how", ["ctrl-c", "sigterm"])
 def test_interrupted_cli_sweep_keeps_results_and_resumes(
-    tmp_path: Path, scheduler_address: str, make_spec: Callable[..., tuple[Path, Path]]
+    tmp_path: Path,
+    scheduler_address: str,
+    make_spec: Callable[..., tuple[Path, Path]],
+    how: str,
 ) -> None:
-    """Ctrl-C (SIGINT to the whole process group) on a sweep with its own LocalCluster."""
+    """Ctrl-C (SIGINT to the whole process group) or SIGTERM to the sweep process alone,
+    on a sweep with its own LocalCluster."""
     spec_path, log = make_spec(tmp_path, sleep=0.4)
     out = tmp_path / "out"
     env = {**os.environ, "PYTHONUNBUFFERED": "1"}
@@ -134,7 +139,10 @@ def test_interrupted_cli_sweep_keeps_results_and_resumes(
     deadline = time.monotonic() + 60
     while len(glob.glob(str(out / "runs" / "*.json"))) < 3 and time.monotonic() < deadline:
         time.sleep(0.05)
-    os.killpg(proc.pid, signal.SIGINT)
+    if how == "ctrl-c":
+        os.killpg(proc.pid, signal.SIGINT)
+    else:
+        os.kill(proc.pid, signal.SIGTERM)
     _, err = proc.communicate(timeout=60)
     assert proc.returncode == 130, err
     assert "interrupted" in err and "Run the same command again to resume" in err

@@ -6,7 +6,7 @@ cluster. Records are written by this process (the client), so workers need no ac
 the output folder. Runs whose record exists (made by the same task) are skipped; failed
 ones rerun only with ``retry_failed``. On KeyboardInterrupt the pending futures are
 cancelled, the table is written from what finished and the cluster is closed; the outcome
-says so.
+says so. SIGTERM is handled the same way while the sweep runs.
 """
 
 from __future__ import annotations
@@ -115,6 +115,26 @@ def check_task(spec: SweepSpec) -> None:
 
 
 @contextlib.contextmanager
+def terminate_as_interrupt() -> Iterator[None]:
+    """While inside, SIGTERM (a batch system's time limit, ``kill``) acts like Ctrl-C.
+
+    Only in the main thread (signal handlers cannot be set elsewhere); restored on exit.
+    """
+    if threading.current_thread() is not threading.main_thread():
+        yield
+        return
+
+    def interrupt(signum: int, frame: Any) -> None:
+        raise KeyboardInterrupt(f"signal {signum}")
+
+    previous = signal.signal(signal.SIGTERM, interrupt)
+    try:
+        yield
+    finally:
+        signal.signal(signal.SIGTERM, previous)
+
+
+@contextlib.contextmanager
 def dask_client(scheduler: str | None, workers: int | None) -> Iterator[Client]:
     """A client on ``scheduler``, or on a new loopback LocalCluster of ``workers`` processes."""
     if scheduler is not None:
@@ -186,7 +206,7 @@ def run_sweep(
                 if client is not None
                 else dask_client(scheduler, workers)
             )
-            with session as client, progress:
+            with terminate_as_interrupt(), session as client, progress:
                 by_key: dict[Any, Run] = {}
                 pending: dict[Any, Any] = {}  # key -> future; dropped once stored
                 for run in todo:
