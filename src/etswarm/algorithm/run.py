@@ -18,7 +18,6 @@ from etswarm.algorithm.layout import plan_layout
 from etswarm.algorithm.memory import (
     R_CENSUS,
     R_ELECT_SINCE,
-    R_EPOCH,
     R_TAG_X,
     R_TAG_Y,
     R_TSLOT,
@@ -125,7 +124,6 @@ class ETRun:
         self.reformed_at: dict[int, float] = {}
         self.census: dict[int, dict[str, int]] = {}
         self._detected_for: float | None = -1.0
-        self._seen_leader: set[tuple[int, int]] = set()
         self.wall_s = 0.0
 
     # -- clock -------------------------------------------------------------------------
@@ -192,6 +190,7 @@ class ETRun:
             cells, tx, ty = self._scaled_placement(int(leader), n)
             slot = ctl.answer(int(leader), cells, n, tx, ty)
             group = self._group_of(int(leader))
+            self._event("leader", robot=int(leader))
             self.census[slot] = {"leader": int(leader), "count": n, "robots": len(group)}
             self._event("census", leader=int(leader), count=n, robots=len(group), slot=slot)
         ctl.stop[0] = 0
@@ -247,12 +246,6 @@ class ETRun:
         if len(danger) and self._detected_for != self.last_damage_s:
             self._detected_for = self.last_damage_s
             self._event("detected", robots=len(danger))
-        epoch = self.controller.ri[:, R_EPOCH]
-        for i in np.flatnonzero(states == State.LEADER):
-            key = (int(i), int(epoch[i]))
-            if key not in self._seen_leader:
-                self._seen_leader.add(key)
-                self._event("leader", robot=int(i))
         comps = self.component_report()
         for comp in comps:
             slot = comp["slot"]

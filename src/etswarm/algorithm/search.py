@@ -119,16 +119,18 @@ def encloses_a_site(i, cx, cy, nb, gene_flag, ci):  # type: ignore[no-untyped-de
 
 
 @njit
-def find_site(i, tick, since, strict, nb, nb_dist, gene_flag, ci, cf):  # type: ignore[no-untyped-def]
+def find_site(i, tick, since, strict, ref_id, nb, nb_dist, gene_flag, ci, cf):  # type: ignore[no-untyped-def]
     """Localise robot i from its placed neighbours (paper Sec. 4.1).
 
     Two placed robots heard at about d whose tags are adjacent put the robot at one of
     their two common lattice neighbours, ``c`` or its mirror ``c2``. The robot takes ``c``
-    only with evidence that it is not at ``c2``: ``c2`` is held by a robot it knows of, or
-    a third placed robot heard since ``since`` is at the distance ``c`` predicts and not
-    at the one ``c2`` predicts. ``c`` must also have gene flag 1, be held by no robot it
-    knows of, agree with every placed robot heard since ``since`` and, when ``strict``,
-    every known robot of a neighbouring site must have been heard since ``since``; and
+    only with evidence that it is not at ``c2``: ``c2`` is held by a robot it knows of, a
+    third placed robot heard since ``since`` is at the distance ``c`` predicts and not at
+    the one ``c2`` predicts, or ``c`` is on the outer side of the pair for a robot that
+    orbits clockwise from the reference ``ref_id`` it followed. ``c`` must also have gene
+    flag 1, be held by no robot it knows of, agree with every placed robot heard since
+    ``since`` and, when ``strict``, every known robot of a neighbouring site must have
+    been heard since ``since``; and
     an Active robot must be adjacent to it (the least TS among them is returned); and
     taking it must not shut a free shape site next to it in (``encloses_a_site``).
 
@@ -162,6 +164,13 @@ def find_site(i, tick, since, strict, nb, nb_dist, gene_flag, ci, cf):  # type: 
             k = direction_index(nb[i, b, NB_TX] - ax, nb[i, b, NB_TY] - ay)
             if k < 0:
                 continue
+            # Orbiting clockwise from the reference it followed towards the other one,
+            # the robot is on the outer side: left of a->b when it came from a.
+            outer_side = -1
+            if nb[i, a, NB_ID] == ref_id:
+                outer_side = 0
+            elif nb[i, b, NB_ID] == ref_id:
+                outer_side = 1
             for side in range(2):
                 kk = (k + 5) % 6 if side == 0 else (k + 1) % 6
                 k2 = (k + 1) % 6 if side == 0 else (k + 5) % 6
@@ -173,7 +182,7 @@ def find_site(i, tick, since, strict, nb, nb_dist, gene_flag, ci, cf):  # type: 
                     continue
                 if encloses_a_site(i, cx, cy, nb, gene_flag, ci):
                     continue
-                ruled_out_mirror = site_taken(i, c2x, c2y, nb)
+                ruled_out_mirror = side == outer_side or site_taken(i, c2x, c2y, nb)
                 ok = True
                 err = 0.0
                 min_ts = -1
@@ -269,7 +278,7 @@ def search_rule(i, tick, new_msgs, ri, nb, nb_dist, motor, gene_flag, gene_nn, c
         if tick - ri[i, R_SUB_SINCE] < ci[C_TICKS_SETTLE]:
             return
         found, cx, cy, min_ts = find_site(
-            i, tick, ri[i, R_SUB_SINCE], True, nb, nb_dist, gene_flag, ci, cf
+            i, tick, ri[i, R_SUB_SINCE], True, ri[i, R_REF_ID], nb, nb_dist, gene_flag, ci, cf
         )
         if found and cx == ri[i, R_CAND_X] and cy == ri[i, R_CAND_Y]:
             set_state(i, ri, INACTIVE, tick)
@@ -302,7 +311,7 @@ def search_rule(i, tick, new_msgs, ri, nb, nb_dist, motor, gene_flag, gene_nn, c
 
     if new_msgs and tick >= ri[i, R_COOLDOWN]:
         found, cx, cy, min_ts = find_site(
-            i, tick, tick - steer_fresh, False, nb, nb_dist, gene_flag, ci, cf
+            i, tick, tick - steer_fresh, False, ri[i, R_REF_ID], nb, nb_dist, gene_flag, ci, cf
         )
         if found:
             motor[i] = STOP
