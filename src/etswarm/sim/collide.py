@@ -115,68 +115,68 @@ def collide_phase(cfg, grid, pos, present, dirty, dirty_flag, n_dirty, spare, co
                     dx = sx[s] - xi
                     dy = sy[s] - yi
                     near[n_near] = s
-                    n_near += dx * dx + dy * dy < near2
+                    n_near += (dx * dx + dy * dy < near2) & (s != a)
+            # share the gaps between budgets (lowering a budget is always safe) and
+            # pick out the overlapping ones, again without branches on distances
+            n_over = 0
             for q in range(n_near):
                 s = near[q]
-                if s == a:
+                dx = sx[s] - xi
+                dy = sy[s] - yi
+                d2 = dx * dx + dy * dy
+                # half the gap d - 2r, bounded below without a sqrt:
+                # d - c = (d^2 - c^2) / (d + c) and d + c <= 2c + margin
+                share = max((d2 - contact2) * share_k, 0.0)
+                own = min(own, share)
+                budget[s] = min(budget[s], share)
+                near[n_over] = s
+                n_over += d2 < resolve2
+            for q in range(n_over):
+                s = near[q]
+                dx = sx[s] - xi
+                dy = sy[s] - yi
+                d2 = dx * dx + dy * dy
+                if d2 >= resolve2:  # no longer overlapping after earlier pushes
                     continue
-                if True:
-                    dx = sx[s] - xi
-                    dy = sy[s] - yi
-                    d2 = dx * dx + dy * dy
-                    if d2 >= resolve2:
-                        # a neighbour, not overlapping: share the gap between budgets
-                        if not moved_i:
-                            # half the gap d - 2r, bounded below without a sqrt:
-                            # d - c = (d^2 - c^2) / (d + c) and d + c <= 2c + margin
-                            share = (d2 - contact2) * share_k
-                            if share < 0.0:
-                                share = 0.0
-                            if share < own:
-                                own = share
-                            j = sidx[s]
-                            if budget[j] > share:
-                                budget[j] = share
-                        continue
-                    d = np.sqrt(d2)
-                    if d > 1e-9:
-                        ux = dx / d
-                        uy = dy / d
-                    else:  # coincident centres: a fixed direction per pair
-                        ang = 2.399963229728653 * ((a + 1) * (s + 1) % 1024)
-                        ux = np.cos(ang)
-                        uy = np.sin(ang)
-                    half = 0.5 * (contact - d)
-                    xi -= half * ux
-                    yi -= half * uy
-                    xj = sx[s] + half * ux
-                    yj = sy[s] + half * uy
-                    if walls:
-                        xi = clamp_to_arena(xi, r, arena)
-                        yi = clamp_to_arena(yi, r, arena)
-                        xj = clamp_to_arena(xj, r, arena)
-                        yj = clamp_to_arena(yj, r, arena)
-                    sx[s] = xj
-                    sy[s] = yj
-                    j = sidx[s]
-                    pos[j, 0] = xj
-                    pos[j, 1] = yj
-                    budget[j] = 0.0
-                    bx = sbx[s]
-                    by = sby[s]
-                    if xj < bx or xj >= bx + span or yj < by or yj >= by + span:
-                        stale = True
-                    if dirty_flag[s] == 0:
-                        dirty_flag[s] = 1
-                        nxt_list[n_next] = s
-                        n_next += 1
-                    moved_i = True
-                    pushes += 1
+                d = np.sqrt(d2)
+                if d > 1e-9:
+                    ux = dx / d
+                    uy = dy / d
+                else:  # coincident centres: a fixed direction per pair
+                    ang = 2.399963229728653 * ((a + 1) * (s + 1) % 1024)
+                    ux = np.cos(ang)
+                    uy = np.sin(ang)
+                half = 0.5 * (contact - d)
+                xi -= half * ux
+                yi -= half * uy
+                xj = sx[s] + half * ux
+                yj = sy[s] + half * uy
+                if walls:
+                    xi = clamp_to_arena(xi, r, arena)
+                    yi = clamp_to_arena(yi, r, arena)
+                    xj = clamp_to_arena(xj, r, arena)
+                    yj = clamp_to_arena(yj, r, arena)
+                sx[s] = xj
+                sy[s] = yj
+                j = sidx[s]
+                pos[j, 0] = xj
+                pos[j, 1] = yj
+                budget[s] = 0.0
+                bx = sbx[s]
+                by = sby[s]
+                if xj < bx or xj >= bx + span or yj < by or yj >= by + span:
+                    stale = True
+                if dirty_flag[s] == 0:
+                    dirty_flag[s] = 1
+                    nxt_list[n_next] = s
+                    n_next += 1
+                moved_i = True
+                pushes += 1
             i = sidx[a]
             if not moved_i:
-                budget[i] = own
+                budget[a] = own
             else:
-                budget[i] = 0.0
+                budget[a] = 0.0
                 sx[a] = xi
                 sy[a] = yi
                 pos[i, 0] = xi

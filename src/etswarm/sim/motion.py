@@ -121,8 +121,8 @@ def move_phase(cfg, grid, pos, heading, motor, alive, present, speed, turn_rate,
         by = sby[s]
         if x < bx or x >= bx + span or y < by or y >= by + span:
             stale = True
-        b = budget[i] - travel
-        budget[i] = b
+        b = budget[s] - travel
+        budget[s] = b
         if b <= 0.0 and dirty_flag[s] == 0:
             dirty_flag[s] = 1
             dirty[n_dirty] = s

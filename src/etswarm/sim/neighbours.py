@@ -13,8 +13,9 @@ with copies of their positions; a row of neighbouring cells is one contiguous sl
 - ``slot``   (N,) int32: slot of each robot, -1 if not filed (absent)
 - ``sbx``, ``sby`` (N,) float64 mm: lower corner of the filed cell minus the margin,
   by slot (the robot's slack box is this corner plus cell + 2 margin)
-- ``budget`` (N,) float64 mm, by robot: how far the robot may still travel before the
-  collision phase must examine it (see :mod:`etswarm.sim.collide`)
+- ``budget`` (N,) float64 mm, by slot: how far the robot may still travel before the
+  collision phase must examine it (see :mod:`etswarm.sim.collide`); carried over to the
+  new slots by a rebuild
 - ``geom``   (6,) float64: minimum cell, margin, cell, 1/cell, origin x, origin y (mm)
 - ``dims``   (2,) int64: nx, ny
 - ``state``  (3,) int64: [stale flag, number of rebuilds, length of the collision work
@@ -132,6 +133,11 @@ def grid_rebuild(grid, pos, present):
     grid.dims[1] = ny
     n_cells = nx * ny
     cell_idx = np.empty(n, dtype=np.int64)
+    kept_budget = np.zeros(n)
+    for i in range(n):
+        s = grid.slot[i]
+        if s >= 0:
+            kept_budget[i] = grid.budget[s]
     start[: n_cells + 1] = 0
     for i in range(n):
         if present[i]:
@@ -156,6 +162,7 @@ def grid_rebuild(grid, pos, present):
         grid.sidx[k] = i
         grid.sx[k] = pos[i, 0]
         grid.sy[k] = pos[i, 1]
+        grid.budget[k] = kept_budget[i]
         grid.sbx[k] = minx + (c % nx) * cell - margin
         grid.sby[k] = miny + (c // nx) * cell - margin
     grid.state[0] = 0
@@ -209,8 +216,8 @@ def grid_sync(grid, pos, present, dirty, dirty_flag, n_dirty):
         n_dirty = rebuild_keeping_list(grid, pos, present, dirty, n_dirty, dirty_flag)
         for i in range(n):
             if edited[i]:
-                grid.budget[i] = 0.0
                 s = grid.slot[i]
+                grid.budget[s] = 0.0
                 if dirty_flag[s] == 0:
                     dirty_flag[s] = 1
                     dirty[n_dirty] = s
