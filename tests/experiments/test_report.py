@@ -94,3 +94,22 @@ def test_helpers() -> None:
     low, high = wilson_interval(5, 10)
     assert low == pytest.approx(0.2366, abs=1e-3) and high == pytest.approx(0.7634, abs=1e-3)
     assert wilson_interval(0, 10)[0] == 0.0
+
+
+def test_summary_groups_rows_where_a_parameter_is_missing() -> None:
+    import pandas as pd
+
+    from etswarm.experiments.report import summary_table
+
+    frame = pd.DataFrame(
+        {
+            "damage": [None, None, '["split x=0"]'],
+            "shape": ["T", "T", "T"],
+            "status": ["ok", "error", "ok"],
+            "formed": [True, None, False],
+        }
+    ).convert_dtypes()
+    table = summary_table(frame, ["damage"])
+    assert table["damage"].tolist() == ["-", '["split x=0"]']
+    assert table["runs"].tolist() == [2, 1] and table["errors"].tolist() == [1, 0]
+    assert list(table.columns[:4]) == ["damage", "runs", "errors", "formed"]

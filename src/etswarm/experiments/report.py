@@ -297,18 +297,30 @@ def summary_table(frame: pd.DataFrame, swept: Sequence[str]) -> pd.DataFrame:
                 values = values[np.isfinite(values)]
                 row[title] = fmt(float(np.median(values))) if values.size else "-"
         rows.append(row)
-    return pd.DataFrame(rows)
+    columns: dict[str, None] = {}
+    for row in rows:  # first-seen order, so a group without measures does not reorder
+        columns.update(dict.fromkeys(row))
+    order = [*swept, "runs", "errors", "formed"]
+    ordered = [c for c in order if c in columns] + [c for c in columns if c not in order]
+    return pd.DataFrame(rows, columns=ordered)
 
 
 def _group_rows(frame: pd.DataFrame, swept: Sequence[str]) -> list[tuple[tuple, pd.DataFrame]]:
     if not swept:
         return [((), frame)]
-    keys = frame[list(swept)].astype(str)
+    keys = pd.DataFrame(
+        {name: [_text(v) for v in frame[name].tolist()] for name in swept}, index=frame.index
+    )
     out = []
     for key in dict.fromkeys(map(tuple, keys.to_numpy())):
         mask = (keys == list(key)).all(axis=1)
         out.append((key, frame[mask]))
     return out
+
+
+def _text(value: Any) -> str:
+    """A cell as table text; missing values (NA, None, NaN) as ``-``."""
+    return "-" if _missing(value) else str(value)
 
 
 def markdown_table(table: pd.DataFrame) -> str:
