@@ -1,0 +1,103 @@
+"""ET speed and formation figures.
+
+Speed: robot-ticks per wall second and x real time of an ET run (formation in progress)
+for a shape of N cells with N robots, after the kernel is compiled.
+Formation: formed share, median formation time (simulated) and median wall time over seeds.
+
+    .venv/bin/python benchmarks/bench_et.py speed [--seconds 600]
+    .venv/bin/python benchmarks/bench_et.py formation [--seeds 20] [--shapes T,dumbbell,starfish]
+"""
+
+from __future__ import annotations
+
+import argparse
+import os
+import statistics
+import tempfile
+import time
+from pathlib import Path
+
+import numpy as np
+
+from etswarm.algorithm.run import ETRun, RunConfig
+
+
+def disc_bitmap(cells: int, path: Path) -> Path:
+    """Write a roughly round text bitmap with about ``cells`` 1s (skewed lattice disc)."""
+    r = int(np.ceil(np.sqrt(cells / np.pi) * 1.1))
+    rows = []
+    for i in range(-r, r + 1):
+        y = -i
+        row = ""
+        for j in range(-2 * r, 2 * r + 1):
+            xx = j - y / 2
+            yy = y * np.sqrt(3) / 2
+            row += (
+                "1" if xx * xx + yy * yy <= (np.sqrt(cells / np.pi * 2 / np.sqrt(3))) ** 2 else "0"
+            )
+        rows.append(row)
+    path.write_text("\n".join(rows) + "\n")
+    return path
+
+
+def speed(seconds: float) -> None:
+    tmp = Path(tempfile.mkdtemp())
+    print(f"load average {os.getloadavg()}")
+    header = ("shape", "robots", "sim s", "wall s", "robot-ticks/s", "x real")
+    print("{:>10} {:>7} {:>7} {:>7} {:>14} {:>8}".format(*header))
+    for name in ("T", "bigdisc", "disc1000"):
+        shape = name
+        if name == "disc1000":
+            shape = str(disc_bitmap(1000, tmp / "disc1000.txt"))
+        run = ETRun(RunConfig(shape=shape, seed=0, max_time_s=seconds, layout="cluster"))
+        run.advance(31)  # compile / load the kernel outside the timing
+        t0 = time.perf_counter()
+        ticks0 = run.world.tick
+        run.advance(round(seconds * 31) - ticks0)
+        wall = time.perf_counter() - t0
+        ticks = run.world.tick - ticks0
+        rt = run.world.n * ticks / wall
+        print(
+            f"{name:>10} {run.world.n:>7} {ticks / 31:>7.0f} {wall:>7.2f} {rt:>14,.0f} "
+            f"{ticks / 31 / wall:>8.0f}"
+        )
+
+
+def formation(seeds: int, shapes: list[str], max_time_s: float) -> None:
+    print(f"load average {os.getloadavg()}")
+    print(
+        f"{'shape':>10} {'formed':>8} {'median sim (min)':>17} {'median wall (s)':>16} "
+        f"{'median jaccard':>15}"
+    )
+    for shape in shapes:
+        times, walls, jac, formed = [], [], [], 0
+        for seed in range(seeds):
+            s = ETRun(RunConfig(shape=shape, seed=seed, max_time_s=max_time_s)).run()
+            formed += s["formed"]
+            if s["formed"]:
+                times.append(s["formation_time_s"] / 60)
+            walls.append(s["wall_time_s"])
+            jac.append(s["jaccard"])
+        med = f"{statistics.median(times):.1f}" if times else "-"
+        print(
+            f"{shape:>10} {formed:>4}/{seeds:<3} {med:>17} {statistics.median(walls):>16.1f} "
+            f"{statistics.median(jac):>15.3f}"
+        )
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__)
+    parser.add_argument("what", choices=["speed", "formation"])
+    parser.add_argument("--seconds", type=float, default=600.0)
+    parser.add_argument("--seeds", type=int, default=20)
+    parser.add_argument("--shapes", default="T,dumbbell,starfish")
+    parser.add_argument("--max-time", type=float, default=4 * 3600.0)
+    args = parser.parse_args()
+    if args.what == "speed":
+        speed(args.seconds)
+    else:
+        formation(args.seeds, args.shapes.split(","), args.max_time)
+
+
+if __name__ == "__main__":
+    main()
