@@ -10,8 +10,8 @@ every 8 ticks (staggered by ID) and shown on the LED.
 ``mem`` layout (tuple of arrays, N robots, T table slots):
     0 stop      (1,) int64     reserved stop flag (never set by this controller)
     1 next_move (N,) int64     tick at which the robot picks its next move
-    2 nb_id     (N, T) int64   neighbour IDs, -1 = empty slot
-    3 nb_seen   (N, T) int64   tick each neighbour was last heard
+    2 nb_id     (N, T) int32   neighbour IDs, -1 = empty slot
+    3 nb_seen   (N, T) int32   tick each neighbour was last heard (fits 2 years of ticks)
     4 nb_count  (N,) int64     unexpired entries at the last refresh
 """
 
@@ -99,8 +99,8 @@ class RandomWalk:
         self.mem = (
             np.zeros(1, dtype=np.int64),
             np.zeros(n, dtype=np.int64),
-            np.full((n, TABLE_SLOTS), -1, dtype=np.int64),
-            np.zeros((n, TABLE_SLOTS), dtype=np.int64),
+            np.full((n, TABLE_SLOTS), -1, dtype=np.int32),
+            np.zeros((n, TABLE_SLOTS), dtype=np.int32),
             np.zeros(n, dtype=np.int64),
         )
 
