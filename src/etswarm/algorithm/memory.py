@@ -33,10 +33,10 @@ R_TAG_Y = 2
 R_NN = 3  # neighbours the gene wants at this tag
 R_TS = 4  # timestep (order of arrival)
 R_SINCE = 5  # tick of the last state change
-R_QMIN = 6  # lowest Queued ID this robot knows of
+R_QMIN = 6  # lowest Queued ID this robot hears (itself included)
 R_QMIN_SINCE = 7  # tick R_QMIN last changed
-R_FLOOR = 8  # release floor: IDs <= this have left the repository (-1: none)
-R_FLOOR_SINCE = 9  # tick R_FLOOR last changed
+R_FLOOR = 8  # ID of the last robot released, as far as this robot knows (-1: none)
+R_FLOOR_SINCE = 9  # tick this robot last heard of a release
 R_RELEASED = 10  # robots released so far, as far as this robot knows
 R_SUB = 11  # search sub-state (SUB_*)
 R_SUB_SINCE = 12

@@ -11,7 +11,7 @@ byte   placed robot (Inactive ..   Queued / Search robot
 2      state code (see states)     state code
 3      tag X (int8)                lowest Queued ID heard, low byte
 4      tag Y (int8)                lowest Queued ID heard, high byte
-5-6    timestep TS (uint16)        release floor + 1 (uint16; 0 = none released)
+5-6    timestep TS (uint16)        last released ID + 1 (uint16; 0 = none)
 7      neighbour-site bits (bit k  robots released so far, low byte
        = a robot holds the site in
        lattice direction k)
@@ -24,8 +24,8 @@ in this robot's subtree. Target message (kind 3; relayed for a while after a sca
 is adopted): 0-1 robot ID, 2 epoch, 3-4 n (cells of scale(bitmap, n)), 5 tx, 6 ty (int8
 translation, tags), 7-8 leader ID.
 
-The *release floor* is the ID of the last robot released from the repository: all
-Queued robots with an ID at or below it have left. ``messages`` holds only constants and
+The release count floods as a maximum among Queued robots, so the repository releases
+no more robots than the target needs. ``messages`` holds only constants and
 numba helpers so the controller can encode and decode without allocation.
 """
 

@@ -11,10 +11,8 @@ from etswarm.algorithm.kernel_util import (
 )
 from etswarm.algorithm.memory import (
     NB_EPOCH,
-    NB_FLOOR,
     NB_ID,
     NB_LAST,
-    NB_QMIN,
     NB_RELEASED,
     NB_STATE,
     R_COOLDOWN,
@@ -39,51 +37,44 @@ from etswarm.algorithm.params import (
 
 @njit
 def queued_rule(i, tick, ri, nb, ci, limit):  # type: ignore[no-untyped-def]
-    """Lowest-ID release from the repository (floor/min flooding, see ``messages``).
+    """Lowest-ID release from the repository.
 
-    A robot leaves only when it has heard no searching robot for ``C_TICKS_CLEAR`` ticks,
-    so searchers never start side by side and the traffic around the repository throttles
-    the release rate.
+    A Queued robot leaves (becomes Search) when its ID is the lowest among the Queued
+    robots it hears, it has heard no searching robot for ``C_TICKS_CLEAR`` ticks (so
+    searchers never start side by side and the traffic around the repository throttles
+    the release rate), no release was heard of for ``C_TICKS_RELEASE`` ticks, and fewer
+    than ``limit`` robots were released so far (the count floods as a maximum; robots
+    beyond the target's needs stay Queued). In a queue sorted by ID this releases the end
+    of the queue one robot after another, as in the paper; in a cluster or after a
+    regeneration, robots far apart may leave at the same time.
     """
     fresh = ci[C_TICKS_NB_FRESH]
-    floor = ri[i, R_FLOOR]
     released = ri[i, R_RELEASED]
-    slots = nb.shape[1]
     last_searcher = -(1 << 40)
+    lowest = i
     epoch = ri[i, R_EPOCH]
-    for m in range(slots):
-        if nb[i, m, NB_ID] >= 0 and nb[i, m, NB_EPOCH] != epoch:
-            continue  # a robot still working for an older target
-        if nb[i, m, NB_ID] >= 0 and nb[i, m, NB_STATE] == SEARCH:
-            last_searcher = max(last_searcher, nb[i, m, NB_LAST])
-        if nb[i, m, NB_ID] >= 0 and tick - nb[i, m, NB_LAST] <= fresh:
-            st = nb[i, m, NB_STATE]
-            if st <= SEARCH:
-                floor = max(floor, nb[i, m, NB_FLOOR])
-                released = max(released, nb[i, m, NB_RELEASED])
-    qmin = i
-    for m in range(slots):
+    for m in range(nb.shape[1]):
         sid = nb[i, m, NB_ID]
         if sid < 0 or nb[i, m, NB_EPOCH] != epoch:
+            continue  # empty, or a robot still working for an older target
+        st = nb[i, m, NB_STATE]
+        if st == SEARCH:
+            last_searcher = max(last_searcher, nb[i, m, NB_LAST])
+        if tick - nb[i, m, NB_LAST] > fresh or st > SEARCH:
             continue
-        if tick - nb[i, m, NB_LAST] <= fresh and nb[i, m, NB_STATE] == QUEUED:
-            if floor < sid < qmin:
-                qmin = sid
-            q = nb[i, m, NB_QMIN]
-            if floor < q < qmin:
-                qmin = q
-    if floor != ri[i, R_FLOOR]:
-        ri[i, R_FLOOR] = floor
+        released = max(released, nb[i, m, NB_RELEASED])
+        if st == QUEUED and sid < lowest:
+            lowest = sid
+    if released != ri[i, R_RELEASED]:
+        ri[i, R_RELEASED] = released
         ri[i, R_FLOOR_SINCE] = tick
-    ri[i, R_RELEASED] = released
-    if qmin != ri[i, R_QMIN]:
-        ri[i, R_QMIN] = qmin
+    if lowest != ri[i, R_QMIN]:
+        ri[i, R_QMIN] = lowest
         ri[i, R_QMIN_SINCE] = tick
     if (
-        qmin == i
-        and i > floor
-        and tick - last_searcher >= ci[C_TICKS_CLEAR]
+        lowest == i
         and released < limit
+        and tick - last_searcher >= ci[C_TICKS_CLEAR]
         and tick - ri[i, R_QMIN_SINCE] >= ci[C_TICKS_QUIET]
         and tick - ri[i, R_FLOOR_SINCE] >= ci[C_TICKS_RELEASE]
     ):
