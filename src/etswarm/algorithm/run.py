@@ -125,6 +125,8 @@ class ETRun:
         self.census: dict[int, dict[str, int]] = {}
         self._detected_for: float | None = -1.0
         self.wall_s = 0.0
+        #: Optional :class:`etswarm.sim.recorder.Recorder`, fed at every measure check.
+        self.recorder: Any = None
 
     # -- clock -------------------------------------------------------------------------
     @property
@@ -245,6 +247,8 @@ class ETRun:
         return components(self.world.pos, live, self.sim_params.comm_range_mm)
 
     def _check(self) -> None:
+        if self.recorder is not None:
+            self.recorder.capture()
         states = self.controller.states
         danger = np.flatnonzero(states == State.DANGER)
         if len(danger) and self._detected_for != self.last_damage_s:

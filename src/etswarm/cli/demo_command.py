@@ -39,7 +39,8 @@ def demo(out: Path, seed: int, view: bool) -> None:
     run = ETRun(config)
     out.mkdir(parents=True, exist_ok=True)
     video = out / "demo.mp4"
-    summary = drive(run, video=video, fps=10.0, speedup=300.0, snapshots=out / "snapshots")
+    summary = drive(run, video=video, fps=10.0, speedup=300.0, snapshots=out / "snapshots",
+                    record=out / "recording.npz")
     path = write_summary(summary, out)
     for line in describe(summary):
         click.echo(line)

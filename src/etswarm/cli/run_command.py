@@ -26,7 +26,7 @@ from etswarm.algorithm.layout import LAYOUTS
 @click.option("--damage", "damage", multiple=True, metavar="SPEC",
               help="Damage 'KIND REGION [at=TIME]', e.g. 'split x=0' (repeatable).")
 @click.option("--out", type=click.Path(file_okay=False, path_type=Path), default=None,
-              help="Directory for summary.json (and snapshots).")
+              help="Directory for summary.json, recording.npz (for replay/plot), snapshots.")
 @click.option("--video", type=click.Path(dir_okay=False, path_type=Path), default=None,
               help="Write a video of the run (.mp4 or .gif).")
 @click.option("--fps", type=float, default=10.0, show_default=True, help="Video frame rate.")
@@ -58,8 +58,9 @@ def run(shape: str, robots: int | None, seed: int, loss: float, noise: float, ma
     shots = None
     if snapshots:
         shots = (out or Path(".")) / "snapshots"
+    record = out / "recording.npz" if out is not None else None
     summary = drive(et_run, video=video, fps=fps, speedup=speedup, snapshots=shots,
-                    quiet=as_json)
+                    record=record, quiet=as_json)
     if out is not None:
         path = write_summary(summary, out)
         if not as_json:

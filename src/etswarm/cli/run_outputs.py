@@ -36,14 +36,41 @@ def drive(
     fps: float = 10.0,
     speedup: float = 300.0,
     snapshots: Path | None = None,
+    record: Path | None = None,
     quiet: bool = False,
     size: tuple[int, int] = (1000, 750),
 ) -> dict[str, Any]:
     """Run ``run`` to its end (settled or out of time) and return its summary.
 
     With ``video``, frames are rendered every ``speedup / fps`` simulated seconds; with
-    ``snapshots``, a PNG is saved at the start and at every event.
+    ``snapshots``, a PNG is saved at the start and at every event; with ``record``, the
+    world is recorded every 10 simulated seconds into that .npz (for ``etswarm replay``
+    and ``etswarm plot``). Files are closed properly when the run ends or is interrupted.
     """
+    from etswarm.sim.recorder import Recorder
+
+    if record is not None:
+        run.recorder = Recorder(
+            record,
+            run.world,
+            meta={
+                "controller": "et",
+                "shape": run.config.shape,
+                "title": f"ET {run.config.shape}, seed {run.config.seed}",
+                "spacing_mm": run.config.et.spacing_mm,
+                "target_tags": run.target.tolist(),
+                "ticks_per_s": run.ticks_per_s,
+            },
+        )
+        run.recorder.capture()
+    try:
+        return _drive(run, video, fps, speedup, snapshots, quiet, size)
+    finally:
+        if run.recorder is not None:
+            run.recorder.close()
+
+
+def _drive(run, video, fps, speedup, snapshots, quiet, size):  # type: ignore[no-untyped-def]
     from etswarm.viewer.snapshots import EventSnapshots
 
     live = ETLive(run)
