@@ -14,16 +14,17 @@ from etswarm.algorithm.params import (
     C_GENE_X0,
     C_GENE_Y0,
 )
+from etswarm.algorithm.states import State
 
-# State codes (mirror of states.State; numba needs plain ints).
-QUEUED = 0
-SEARCH = 1
-INACTIVE = 2
-ACTIVE = 3
-QUASI = 4
-STABLE = 5
-DANGER = 6
-LEADER = 7
+# State codes as plain ints (numba folds module-level ints into the compiled code).
+QUEUED = int(State.QUEUED)
+SEARCH = int(State.SEARCH)
+INACTIVE = int(State.INACTIVE)
+ACTIVE = int(State.ACTIVE)
+QUASI = int(State.QUASI)
+STABLE = int(State.STABLE)
+DANGER = int(State.DANGER)
+LEADER = int(State.LEADER)
 
 # Motor commands (simulator contract).
 STOP = 0
@@ -72,21 +73,13 @@ def lattice_distance(ax, ay, bx, by):  # type: ignore[no-untyped-def]
 
 
 @njit(inline="always")
-def gene_flag_at(gene_flag, ci, x, y):  # type: ignore[no-untyped-def]
+def gene_at(grid, ci, x, y):  # type: ignore[no-untyped-def]
+    """Value of a gene grid (flag or NN, (GX, GY)) at tag (x, y); 0 outside the grid."""
     gx = x - ci[C_GENE_X0]
     gy = y - ci[C_GENE_Y0]
-    if gx < 0 or gy < 0 or gx >= gene_flag.shape[0] or gy >= gene_flag.shape[1]:
+    if gx < 0 or gy < 0 or gx >= grid.shape[0] or gy >= grid.shape[1]:
         return 0
-    return gene_flag[gx, gy]
-
-
-@njit(inline="always")
-def gene_nn_at(gene_nn, ci, x, y):  # type: ignore[no-untyped-def]
-    gx = x - ci[C_GENE_X0]
-    gy = y - ci[C_GENE_Y0]
-    if gx < 0 or gy < 0 or gx >= gene_nn.shape[0] or gy >= gene_nn.shape[1]:
-        return 0
-    return gene_nn[gx, gy]
+    return grid[gx, gy]
 
 
 @njit

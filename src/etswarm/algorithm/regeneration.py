@@ -23,8 +23,7 @@ from etswarm.algorithm.kernel_util import (
     INACTIVE,
     LEADER,
     QUEUED,
-    gene_flag_at,
-    gene_nn_at,
+    gene_at,
     set_state,
 )
 from etswarm.algorithm.memory import (
@@ -187,8 +186,8 @@ def adopt_target(i, tick, ri, nb, slot, epoch, leader, gene_flag, gene_nn, slot_
     ri[i, R_COUNT] = 0
     x = ri[i, R_TAG_X]
     y = ri[i, R_TAG_Y]
-    if ri[i, R_HAS_TAG] == 1 and gene_flag_at(gene_flag[slot], ci, x, y) == 1:
-        ri[i, R_NN] = gene_nn_at(gene_nn[slot], ci, x, y)
+    if ri[i, R_HAS_TAG] == 1 and gene_at(gene_flag[slot], ci, x, y) == 1:
+        ri[i, R_NN] = gene_at(gene_nn[slot], ci, x, y)
         if i == leader:
             set_state(i, ri, ACTIVE, tick)
             ri[i, R_TS] = 1

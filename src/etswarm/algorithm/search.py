@@ -15,8 +15,7 @@ from etswarm.algorithm.kernel_util import (
     SEARCH,
     STOP,
     direction_index,
-    gene_flag_at,
-    gene_nn_at,
+    gene_at,
     is_placed,
     lattice_distance,
     set_state,
@@ -103,7 +102,7 @@ def encloses_a_site(i, cx, cy, nb, gene_flag, ci):  # type: ignore[no-untyped-de
     for k in range(6):
         sx = cx + DIR_X[k]
         sy = cy + DIR_Y[k]
-        if gene_flag_at(gene_flag, ci, sx, sy) != 1 or site_taken(i, sx, sy, nb):
+        if gene_at(gene_flag, ci, sx, sy) != 1 or site_taken(i, sx, sy, nb):
             continue
         run = 0
         best = 0
@@ -178,7 +177,7 @@ def find_site(i, tick, since, strict, ref_id, nb, nb_dist, gene_flag, ci, cf):  
                 cy = ay + DIR_Y[kk]
                 c2x = ax + DIR_X[k2]
                 c2y = ay + DIR_Y[k2]
-                if gene_flag_at(gene_flag, ci, cx, cy) != 1 or site_taken(i, cx, cy, nb):
+                if gene_at(gene_flag, ci, cx, cy) != 1 or site_taken(i, cx, cy, nb):
                     continue
                 if encloses_a_site(i, cx, cy, nb, gene_flag, ci):
                     continue
@@ -284,7 +283,7 @@ def search_rule(i, tick, new_msgs, ri, nb, nb_dist, motor, gene_flag, gene_nn, c
             set_state(i, ri, INACTIVE, tick)
             ri[i, R_TAG_X] = cx
             ri[i, R_TAG_Y] = cy
-            ri[i, R_NN] = gene_nn_at(gene_nn, ci, cx, cy)
+            ri[i, R_NN] = gene_at(gene_nn, ci, cx, cy)
             ri[i, R_TS] = min_ts + 1
             ri[i, R_HAS_TAG] = 1
             ri[i, R_COUNT] = 0

@@ -148,17 +148,24 @@ def view(
     if video is not None:
         _write_video(live, video, fps, speed, frames or 300, window_size)
         return
+    _open_window(
+        live, window_size, fps, speed, paused, out, f"etswarm view: {shape or controller}", frames
+    )
+
+
+def _open_window(live, size, fps, speed, paused, out, caption, frames) -> None:  # type: ignore[no-untyped-def]
+    """Show ``live`` in the pygame window (a display is needed) and report what was saved."""
     _check_display(frames)
     from etswarm.viewer.window import run_viewer
 
     result = run_viewer(
         live,
-        size=window_size,
+        size=size,
         fps=fps,
         speed=speed,
         start_paused=paused,
         output_dir=out,
-        caption=f"etswarm view: {shape or controller}",
+        caption=caption,
         max_frames=frames,
     )
     _report(result)
@@ -265,20 +272,9 @@ def replay(
             total = min(total, frames)
         _write_video(live, video, fps, speed, total, window_size)
         return
-    _check_display(frames)
-    from etswarm.viewer.window import run_viewer
-
-    result = run_viewer(
-        live,
-        size=window_size,
-        fps=fps,
-        speed=speed,
-        start_paused=paused,
-        output_dir=out,
-        caption=f"etswarm replay: {record.title}",
-        max_frames=frames,
+    _open_window(
+        live, window_size, fps, speed, paused, out, f"etswarm replay: {record.title}", frames
     )
-    _report(result)
 
 
 @click.command()
