@@ -570,6 +570,8 @@ def write_paper_report(out_dir: str | Path, notes: Sequence[str] = ()) -> Path:
         " Tracking* (GECCO 2018): their experiments run with etswarm. Loss 0.2, distance"
         " noise 2 mm, robots released from a queue; simulated times.",
         "",
+        f"Software: {software_version()}.",
+        "",
     ]
     lines += ["## Our numbers and the paper's", "", "| measure | etswarm | paper |"]
     lines.append("|---|---|---|")
@@ -669,6 +671,28 @@ def closest_failure(runs: Sequence[dict[str, Any]]) -> dict[str, Any] | None:
             -r["params"]["seed"],
         ),
     )
+
+
+def software_version() -> str:
+    """``etswarm X.Y.Z`` plus the git commit of the source tree when there is one."""
+    import subprocess
+
+    import etswarm
+
+    text = f"etswarm {etswarm.__version__}"
+    try:
+        where = Path(etswarm.__file__).parent
+        commit = subprocess.run(
+            ["git", "rev-parse", "--short", "HEAD"], cwd=where, capture_output=True,
+            text=True, timeout=5, check=True,
+        ).stdout.strip()
+        dirty = subprocess.run(
+            ["git", "status", "--porcelain", "--untracked-files=no", "--", "."], cwd=where,
+            capture_output=True, text=True, timeout=5, check=True,
+        ).stdout.strip()
+    except (OSError, subprocess.SubprocessError):
+        return text
+    return f"{text}, git {commit}{' with uncommitted changes' if dirty else ''}"
 
 
 def _what_went_wrong(runs: Sequence[dict[str, Any]], shown: dict[str, Any] | None) -> list[str]:
