@@ -100,13 +100,28 @@ def _drive(run, video, fps, speedup, snapshots, quiet, size):  # type: ignore[no
 
 
 def _drive_video(live: ETLive, path: Path, fps: float, speedup: float, size, tick) -> None:  # type: ignore[no-untyped-def]
-    from etswarm.viewer.headless import live_frames
-    from etswarm.viewer.video import VideoWriter
+    """Render a frame every ``speedup / fps`` simulated seconds until the run ends; the view
+    re-fits every frame so a queue that empties or a remnant moved away stays in the picture."""
+    import dataclasses
 
+    from etswarm.viewer.render import render
+    from etswarm.viewer.video import VideoWriter
+    from etswarm.viewer.view import ViewState
+
+    ticks_per_frame = max(1, round(speedup * live.ticks_per_second / fps))
+    view: ViewState | None = None
     with VideoWriter(path, fps) as writer:
-        for frame in live_frames(live, fps=fps, speed=speedup, size=size):
-            writer.write(frame)
+        while True:
+            scene = dataclasses.replace(live.scene(), speedup=speedup)
+            if view is None:
+                view = ViewState.fitted(scene, *size)
+            else:
+                view.fit(scene)
+            writer.write(render(scene, view))
             tick(live.run)
+            if live.finished:
+                break
+            live.advance(ticks_per_frame)
 
 
 def write_summary(summary: dict[str, Any], out: Path) -> Path:
