@@ -31,12 +31,10 @@ from etswarm.algorithm.memory import (
     NB_EPARENT,
     NB_EPOCH,
     NB_ESUB,
-    NB_FLOOR,
     NB_ID,
     NB_LAST,
     NB_MASK,
     NB_PREV,
-    NB_QMIN,
     NB_RELEASED,
     NB_STATE,
     NB_TS,
@@ -163,8 +161,6 @@ def ingest(i, k, tick, ri, in_type, in_data, in_dist, nb, nb_dist):  # type: ign
         nb[i, slot, NB_TS] = int(in_data[i, k, 5]) | (int(in_data[i, k, 6]) << 8)
         nb[i, slot, NB_MASK] = int(in_data[i, k, 7])
     else:
-        nb[i, slot, NB_QMIN] = int(in_data[i, k, 3]) | (int(in_data[i, k, 4]) << 8)
-        nb[i, slot, NB_FLOOR] = (int(in_data[i, k, 5]) | (int(in_data[i, k, 6]) << 8)) - 1
         nb[i, slot, NB_RELEASED] = int(in_data[i, k, 7]) | (int(in_data[i, k, 8]) << 8)
     return kind
 
