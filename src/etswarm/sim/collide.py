@@ -66,7 +66,10 @@ def collide_phase(cfg, grid, pos, present, dirty, dirty_flag, n_dirty, spare, co
     share_k = 0.5 / (2.0 * contact + margin)
     budget = grid.budget
     n_slots = dirty_flag.shape[0]
-    near = np.empty(n_slots, dtype=np.int32)  # slots near the robot being examined
+    # slots near the robot being examined and their squared distances (mm^2); slots are
+    # unsigned here and below so that indexing needs no negative-index wraparound
+    near = np.empty(n_slots, dtype=np.uint32)
+    near_d2 = np.empty(n_slots)
     cur = dirty
     nxt_list = spare
     swapped = False
@@ -88,12 +91,12 @@ def collide_phase(cfg, grid, pos, present, dirty, dirty_flag, n_dirty, spare, co
         ny = grid.dims[1]
         if 8 * n_cur > n_slots:
             # a long list: take it in slot order (neighbours in memory) by scanning flags
+            # (branch-free: every slot is written, the count advances on flagged ones)
             n_cur = 0
             for a in range(n_slots):
-                if dirty_flag[a] != 0:
-                    dirty_flag[a] = 0
-                    cur[n_cur] = a
-                    n_cur += 1
+                cur[n_cur] = a
+                n_cur += dirty_flag[a] != 0
+                dirty_flag[a] = 0
         else:
             for k in range(n_cur):
                 dirty_flag[cur[k]] = 0
@@ -109,21 +112,22 @@ def collide_phase(cfg, grid, pos, present, dirty, dirty_flag, n_dirty, spare, co
             cy0, cy1 = cell_range(yi, reach, oy, inv, ny)
             # gather the slots within contact + margin without branching on distances
             n_near = 0
+            ua = np.uint64(a)
             for cy in range(cy0, cy1 + 1):
                 row = cy * nx
-                for s in range(start[row + cx0], start[row + cx1 + 1]):
+                for s in range(np.uint64(start[row + cx0]), np.uint64(start[row + cx1 + 1])):
                     dx = sx[s] - xi
                     dy = sy[s] - yi
+                    d2 = dx * dx + dy * dy
                     near[n_near] = s
-                    n_near += (dx * dx + dy * dy < near2) & (s != a)
+                    near_d2[n_near] = d2
+                    n_near += (d2 < near2) & (s != ua)
             # share the gaps between budgets (lowering a budget is always safe) and
             # pick out the overlapping ones, again without branches on distances
             n_over = 0
             for q in range(n_near):
                 s = near[q]
-                dx = sx[s] - xi
-                dy = sy[s] - yi
-                d2 = dx * dx + dy * dy
+                d2 = near_d2[q]
                 # half the gap d - 2r, bounded below without a sqrt:
                 # d - c = (d^2 - c^2) / (d + c) and d + c <= 2c + margin
                 share = max((d2 - contact2) * share_k, 0.0)
