@@ -20,12 +20,16 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
+from etswarm.sim.prefetch import prefetch
+
 #: Message type of random-walk broadcasts.
 MSG_HELLO = 1
 #: Ticks after which a neighbour-table entry expires.
 EXPIRE_TICKS = 64
 #: Neighbour-table slots per robot.
 TABLE_SLOTS = 16
+#: Robots ahead whose table and inbox rows a control step asks the cache for.
+PREFETCH_AHEAD = 4
 
 
 @njit(cache=True)
@@ -37,7 +41,15 @@ def randomwalk_step(tick, alive, in_count, in_type, in_data, in_dist, motor, led
     nb_seen = mem[3]
     nb_count = mem[4]
     slots = nb_id.shape[1]
-    for i in range(alive.shape[0]):
+    n = alive.shape[0]
+    for i in range(n):
+        if i + PREFETCH_AHEAD < n:
+            # rows of a robot a few places ahead (read only if it heard or refreshes)
+            ahead = i + PREFETCH_AHEAD
+            prefetch(nb_id, ahead)
+            prefetch(nb_seen, ahead)
+            prefetch(in_type, ahead)
+            prefetch(in_data, ahead)
         if not alive[i]:
             continue
         # hear: refresh or add table entries
