@@ -2,7 +2,7 @@
 
 At each rebuild the bounding box of the present robots is cut into ``nx x ny`` square
 cells (side at least the minimum cell size, larger only if more cells than the capacity
-max(1024, 4 N) would be needed, so walls are optional and an unbounded swarm still
+max(4096, 8 N) would be needed, so walls are optional and an unbounded swarm still
 works). A counting sort by cell (row-major, stable in robot index, so the layout is a
 function of the positions only) stores each cell's robots contiguously in "slot" order,
 with copies of their positions; a row of neighbouring cells is one contiguous slot range.
@@ -63,7 +63,7 @@ G_CELL_MIN, G_MARGIN, G_CELL, G_INV, G_OX, G_OY = 0, 1, 2, 3, 4, 5
 
 def make_grid(n_robots: int, cell_mm: float, margin_mm: float) -> Grid:
     """An empty cell list for ``n_robots`` robots: cells of at least ``cell_mm`` mm, slack
-    ``margin_mm`` mm, at most max(1024, 4 N) cells."""
+    ``margin_mm`` mm, at most max(4096, 8 N) cells."""
     if cell_mm <= 0 or margin_mm < 0:
         raise ValueError(f"bad grid geometry: cell {cell_mm} mm, margin {margin_mm} mm")
     capacity = max(4096, 8 * n_robots)
