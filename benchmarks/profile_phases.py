@@ -66,7 +66,7 @@ def _timed_ticks(n, tick0, cfg, grid, pos, heading, motor, led, alive, present, 
         n_dirty = move_phase(cfg, grid, pos, heading, motor, alive, present, speed,
                              turn_rate, dirty, dirty_flag, n_dirty, trig, rng_motion)
         t3 = _cycles()
-        n_dirty = collide_phase(cfg, grid, pos, present, dirty, dirty_flag, n_dirty, spare,
+        n_dirty = collide_phase(cfg, grid, pos, present, motor, dirty, dirty_flag, n_dirty, spare,
                                 counters)
         t4 = _cycles()
         cycles[0] += t1 - t0

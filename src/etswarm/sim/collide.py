@@ -12,8 +12,10 @@ gets budget 0. A still swarm costs nothing here, and a robot in open space is ex
 only every few ticks. Each pass takes every
 listed robot i, finds the present robots j with centre distance < 2r - slop (cell-list
 query of radius 2r) and pushes the pair apart along the centre line, half the overlap
-each, so they stand 2r apart; walls clamp afterwards. Every robot that a pass moved goes
-on the next pass's list: a pushed robot moves, and may push others. Passes repeat until
+each, so they stand 2r apart (when exactly one of the two has its motors on, the still
+one takes only ``still_push_share`` of the overlap: it grips the ground); walls clamp
+afterwards. Every robot that a pass moved goes on the next pass's list: a pushed robot
+moves, and may push others. Passes repeat until
 nothing moves or ``max_passes`` is reached (then the tick ends with the remaining small
 overlaps, counted in counters[5], and the robots still to examine start the next tick's
 list, so nothing is forgotten). Alive and dead robots are pushed alike. Overlaps
@@ -39,7 +41,7 @@ from etswarm.sim.neighbours import (
 
 
 @njit(cache=True)
-def collide_phase(cfg, grid, pos, present, dirty, dirty_flag, n_dirty, spare, counters):
+def collide_phase(cfg, grid, pos, present, motor, dirty, dirty_flag, n_dirty, spare, counters):
     """Resolve overlaps starting from the work list ``dirty[:n_dirty]`` (grid slots).
 
     ``dirty_flag`` (N,) uint8 marks listed slots; ``spare`` is a second (N,) int32 work
@@ -51,6 +53,7 @@ def collide_phase(cfg, grid, pos, present, dirty, dirty_flag, n_dirty, spare, co
     returned (also kept in ``grid.state[2]``) to start the next tick's list.
     """
     r = cfg.radius
+    still_share = cfg.still_share
     contact = 2.0 * r
     resolve2 = (contact - cfg.slop) * (contact - cfg.slop)
     walls = cfg.arena > 0.0
@@ -163,11 +166,16 @@ def collide_phase(cfg, grid, pos, present, dirty, dirty_flag, n_dirty, spare, co
                     ang = 2.399963229728653 * ((a + 1) * (s + 1) % 1024)
                     ux = np.cos(ang)
                     uy = np.sin(ang)
-                half = 0.5 * (contact - d)
-                xi -= half * ux
-                yi -= half * uy
-                xj = sx[s] + half * ux
-                yj = sy[s] + half * uy
+                # a robot standing on its legs slides less than a vibrating one
+                j = sidx[s]
+                share_j = 0.5
+                if (motor[sidx[a]] == 0) != (motor[j] == 0):
+                    share_j = still_share if motor[j] == 0 else 1.0 - still_share
+                depth = contact - d
+                xi -= (1.0 - share_j) * depth * ux
+                yi -= (1.0 - share_j) * depth * uy
+                xj = sx[s] + share_j * depth * ux
+                yj = sy[s] + share_j * depth * uy
                 if walls:
                     xi = clamp_to_arena(xi, r, arena)
                     yi = clamp_to_arena(yi, r, arena)
@@ -175,7 +183,6 @@ def collide_phase(cfg, grid, pos, present, dirty, dirty_flag, n_dirty, spare, co
                     yj = clamp_to_arena(yj, r, arena)
                 sx[s] = xj
                 sy[s] = yj
-                j = sidx[s]
                 pos[j, 0] = xj
                 pos[j, 1] = yj
                 budget[s] = 0.0

@@ -62,7 +62,7 @@ def run_ticks(n, tick0, cfg, grid, pos, heading, motor, led, alive, present, spe
                         out_on, out_type, out_data, mem, rng_ctl)
         n_dirty = move_phase(cfg, grid, pos, heading, motor, alive, present, speed,
                              turn_rate, dirty, dirty_flag, n_dirty, trig, rng_motion)
-        n_dirty = collide_phase(cfg, grid, pos, present, dirty, dirty_flag, n_dirty, spare,
+        n_dirty = collide_phase(cfg, grid, pos, present, motor, dirty, dirty_flag, n_dirty, spare,
                                 counters)
         if stop[0] != 0:
             return k + 1

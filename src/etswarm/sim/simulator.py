@@ -152,8 +152,8 @@ class Simulator:
         n_dirty = move_phase(self.cfg, g, w.pos, w.heading, w.motor, w.alive, w.present,
                              w.speed, w.turn_rate, self._dirty, self._dirty_flag, n_dirty,
                              self._trig, self.rng_motion)
-        collide_phase(self.cfg, g, w.pos, w.present, self._dirty, self._dirty_flag, n_dirty,
-                      self._spare, w.counters)
+        collide_phase(self.cfg, g, w.pos, w.present, w.motor, self._dirty, self._dirty_flag,
+                      n_dirty, self._spare, w.counters)
         w.tick += 1
 
     def run_seconds(self, seconds: float) -> int:
