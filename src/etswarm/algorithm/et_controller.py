@@ -69,6 +69,10 @@ class ETController:
         self.slot_info = np.zeros((INITIAL_SLOTS, SLOT_FIELDS), dtype=np.int64)
         self.slot_cells: list[np.ndarray] = []
         self.ci, self.cf = et.pack(ticks_per_s, self.x0, self.y0, diameter_hops=int(span.sum()))
+        # Each robot's bitmap of the tags it collected on a census walk (only Leaders use
+        # it; a placeholder when the census is by spanning tree).
+        walk_grid = self.grid_shape if et.census == "walk" else (1, 1)
+        self.walk_seen = np.zeros((n_robots, *walk_grid), dtype=np.uint8)
         self.add_target(target, release_limit=max(0, len(target) - 3), tx=0, ty=0)
 
     # -- targets -----------------------------------------------------------------------
@@ -117,6 +121,7 @@ class ETController:
             self.slot_info,
             self.ci,
             self.cf,
+            self.walk_seen,
         )
 
     def seed(self, layout: Layout) -> None:

@@ -1,0 +1,324 @@
+"""Census by walking round the remnant (paper, Shape Regeneration, step 2; census ``walk``).
+
+Once the election has made a robot Leader, it leaves its site and edge-follows the
+remnant clockwise at about d from the nearest robot (every other robot stands still while
+electing). On the way it records in its own memory (``walk_seen[i]``, a bitmap over the
+gene grid) the tag of every placed robot it hears nearer than ``census_collect_mm``: the
+robots on the remnant's periphery. Robots that hear a walking Leader's status message send
+their own status (which carries their tag) every other message period for a while, so the
+walker hears tags and not only election messages.
+
+The walker knows it is back when, after having been well away from its site (a reading
+off the distance its site predicts by more than ``GONE_FRACTION`` d), it localises onto its
+own tag as a searcher does on a site (paper Sec. 4.1): two robots of neighbouring sites at
+about d and every robot heard at the distance its site predicts. It stops there, confirms
+with readings taken standing still, and maps the collected tags onto the current target's
+bitmap: the cells a lattice flood fill from the grid's border cannot reach without crossing
+a collected tag (its own included) form the closed area bounded by the remnant, and the
+1-cells of that area are the census count. A remnant with holes inside (robots removed in
+the middle) is over-counted: the walk never sees the holes (the paper's method).
+
+If the walk takes longer than ``census_walk_timeout_s``, or the walker hears nobody for
+``LOST_TICKS``, the count is made from what was collected so far and the Leader gives up
+its tag (it is not on its site), so the new target is grown without it as a seed.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from numba import njit
+
+from etswarm.algorithm.kernel_util import (
+    DIR_X,
+    DIR_Y,
+    FAR,
+    LEFT,
+    RIGHT,
+    STOP,
+    is_placed,
+    lattice_distance,
+)
+from etswarm.algorithm.memory import (
+    NB_ID,
+    NB_LAST,
+    NB_STATE,
+    NB_TX,
+    NB_TY,
+    R_CENSUS,
+    R_HAS_TAG,
+    R_REQUEST,
+    R_TAG_X,
+    R_TAG_Y,
+    R_WALK,
+    R_WALK_END,
+    R_WALK_GONE,
+    R_WALK_RESULT,
+    R_WALK_SEEN,
+    R_WALK_SINCE,
+    R_WALK_SUB_SINCE,
+    R_WALK_TAGS,
+)
+from etswarm.algorithm.params import (
+    C_GENE_X0,
+    C_GENE_Y0,
+    C_TICKS_COOLDOWN,
+    C_TICKS_MOVE_FRESH,
+    C_TICKS_SETTLE,
+    C_TICKS_WALK_MAX,
+    F_BALANCE_TOL,
+    F_CLEARANCE,
+    F_CLOSING,
+    F_CONSIST_TOL,
+    F_FOLLOW_OFFSET,
+    F_PAIR_TOL,
+    F_SPACING,
+    F_WALK_COLLECT,
+)
+
+# Walk phases (R_WALK).
+WALK_NONE = 0
+WALK_START = 1  # declared Leader; the walk begins at the next tick
+WALK_OUT = 2  # edge-following round the remnant
+WALK_SETTLE = 3  # stopped where it believes its site is; confirming
+WALK_DONE = 4  # counted (R_CENSUS); waiting for its scaled target
+
+# How a census ended (R_WALK_RESULT).
+RESULT_NONE = 0
+RESULT_TREE = 1  # spanning-tree count (census "tree")
+RESULT_RETURNED = 2  # walked round and back onto its site
+RESULT_TIMEOUT = 3  # walk took too long: count from the tags collected so far
+RESULT_LOST = 4  # heard nobody for LOST_TICKS: count from the tags collected so far
+
+#: Names of the results, indexed by code (for events and summaries).
+RESULT_NAMES = ("none", "tree", "returned", "timeout", "lost")
+
+#: A reading off the walker's site prediction by more than this many d: it has left.
+GONE_FRACTION = 0.75
+#: Ticks a robot keeps sending its tag (every other period) after hearing a walker.
+RELAY_TICKS = 31 * 15
+#: The walker gives up after hearing nobody this long (ticks).
+LOST_TICKS = 31 * 120
+
+
+@njit(inline="always")
+def walking(phase):  # type: ignore[no-untyped-def]
+    """True while the Leader is away from (or settling back onto) its site."""
+    return WALK_START <= phase <= WALK_SETTLE
+
+
+@njit
+def sends_tag(i, tick, ri):  # type: ignore[no-untyped-def]
+    """An electing robot i alternates its election message with its status (tag) message:
+    the walker itself, and robots that heard a walker in the last ``RELAY_TICKS``."""
+    if walking(ri[i, R_WALK]):
+        return True
+    return ri[i, R_HAS_TAG] == 1 and tick - ri[i, R_WALK_SEEN] < RELAY_TICKS
+
+
+@njit
+def walk_count(seen, gene_flag):  # type: ignore[no-untyped-def]
+    """Census count from the collected tags: the 1-cells of the closed area they bound.
+
+    ``seen`` (GX, GY) uint8: 1 where a tag was collected (the walls); ``gene_flag``
+    (GX, GY) uint8: the current target's bitmap on the same grid. A flood fill over the
+    six lattice directions starts from every border cell that is not a wall and never
+    enters a wall; the 1-cells it does not reach (inside and on the boundary) are counted.
+    """
+    gx_n, gy_n = gene_flag.shape
+    outside = np.zeros((gx_n, gy_n), dtype=np.uint8)
+    stack = np.empty(gx_n * gy_n, dtype=np.int64)
+    top = 0
+    for gx in range(gx_n):
+        for gy in range(gy_n):
+            border = gx == 0 or gy == 0 or gx == gx_n - 1 or gy == gy_n - 1
+            if border and seen[gx, gy] == 0:
+                outside[gx, gy] = 1
+                stack[top] = gx * gy_n + gy
+                top += 1
+    while top > 0:
+        top -= 1
+        gx = stack[top] // gy_n
+        gy = stack[top] % gy_n
+        for k in range(6):
+            nx = gx + DIR_X[k]
+            ny = gy + DIR_Y[k]
+            if nx < 0 or ny < 0 or nx >= gx_n or ny >= gy_n:
+                continue
+            if outside[nx, ny] == 1 or seen[nx, ny] == 1:
+                continue
+            outside[nx, ny] = 1
+            stack[top] = nx * gy_n + ny
+            top += 1
+    count = 0
+    for gx in range(gx_n):
+        for gy in range(gy_n):
+            if outside[gx, gy] == 0 and gene_flag[gx, gy] == 1:
+                count += 1
+    return count
+
+
+@njit
+def mark_tag(i, x, y, seen, ci):  # type: ignore[no-untyped-def]
+    """Record tag (x, y) in robot i's walk bitmap; True if it was new."""
+    gx = x - ci[C_GENE_X0]
+    gy = y - ci[C_GENE_Y0]
+    if gx < 0 or gy < 0 or gx >= seen.shape[1] or gy >= seen.shape[2]:
+        return False
+    if seen[i, gx, gy] == 1:
+        return False
+    seen[i, gx, gy] = 1
+    return True
+
+
+@njit
+def collect(i, tick, ri, nb, nb_dist, seen, ci, cf):  # type: ignore[no-untyped-def]
+    """Record the tags of the placed robots heard this tick nearer than the collect
+    distance (their tags come from their status messages)."""
+    near = cf[F_WALK_COLLECT]
+    for m in range(nb.shape[1]):
+        if nb[i, m, NB_ID] < 0 or nb[i, m, NB_LAST] != tick:
+            continue
+        if not is_placed(nb[i, m, NB_STATE]) or nb_dist[i, m] >= near:
+            continue
+        if mark_tag(i, nb[i, m, NB_TX], nb[i, m, NB_TY], seen, ci):
+            ri[i, R_WALK_TAGS] += 1
+
+
+@njit
+def far_from_site(i, tick, ri, nb, nb_dist, cf):  # type: ignore[no-untyped-def]
+    """A placed robot heard this tick is off the distance robot i's site predicts by more
+    than GONE_FRACTION d: robot i is well away from its site."""
+    d = cf[F_SPACING]
+    hx = ri[i, R_TAG_X]
+    hy = ri[i, R_TAG_Y]
+    for m in range(nb.shape[1]):
+        if nb[i, m, NB_ID] < 0 or nb[i, m, NB_LAST] != tick or not is_placed(nb[i, m, NB_STATE]):
+            continue
+        pred = lattice_distance(hx, hy, nb[i, m, NB_TX], nb[i, m, NB_TY]) * d
+        if abs(nb_dist[i, m] - pred) > GONE_FRACTION * d:
+            return True
+    return False
+
+
+@njit
+def at_site(i, since, ri, nb, nb_dist, cf):  # type: ignore[no-untyped-def]
+    """Robot i localises onto its own tag from the placed robots heard since ``since``:
+    two of them on neighbouring sites are at d (within the pair tolerance, and within the
+    balance tolerance of each other), and every one is at the distance its tag predicts
+    (within the consistency tolerance)."""
+    d = cf[F_SPACING]
+    hx = ri[i, R_TAG_X]
+    hy = ri[i, R_TAG_Y]
+    pairs = 0
+    lo = FAR
+    hi = -FAR
+    for m in range(nb.shape[1]):
+        if nb[i, m, NB_ID] < 0 or nb[i, m, NB_LAST] < since or not is_placed(nb[i, m, NB_STATE]):
+            continue
+        pred = lattice_distance(hx, hy, nb[i, m, NB_TX], nb[i, m, NB_TY]) * d
+        err = abs(nb_dist[i, m] - pred)
+        if err > cf[F_CONSIST_TOL]:
+            return False
+        if abs(pred - d) < 1e-6 and err <= cf[F_PAIR_TOL]:
+            pairs += 1
+            lo = min(lo, nb_dist[i, m])
+            hi = max(hi, nb_dist[i, m])
+    return pairs >= 2 and hi - lo <= cf[F_BALANCE_TOL]
+
+
+@njit
+def orbit(i, tick, nb, nb_dist, motor, ci, cf):  # type: ignore[no-untyped-def]
+    """Edge-follow clockwise at about d from the nearest robot heard (every robot of the
+    remnant stands still during the census); returns False when nobody was heard lately.
+
+    Same rule as a searcher's: pivot away from the group when the last reading of the
+    nearest robot is under the aim, towards it otherwise, and away from any robot that
+    may have come nearer than the clearance.
+    """
+    steer_fresh = ci[C_TICKS_MOVE_FRESH]
+    closing = cf[F_CLOSING]
+    nearest_est = FAR
+    reading = FAR
+    for m in range(nb.shape[1]):
+        if nb[i, m, NB_ID] < 0 or tick - nb[i, m, NB_LAST] > steer_fresh:
+            continue
+        est = nb_dist[i, m] - closing * (tick - nb[i, m, NB_LAST])
+        if est < nearest_est:
+            nearest_est = est
+            reading = nb_dist[i, m]
+    if nearest_est >= FAR:
+        motor[i] = RIGHT
+        return False
+    if nearest_est < cf[F_CLEARANCE] or reading < cf[F_SPACING] + cf[F_FOLLOW_OFFSET]:
+        motor[i] = LEFT
+    else:
+        motor[i] = RIGHT
+    return True
+
+
+@njit
+def conclude(i, tick, ri, motor, seen, gene_flag, result, stop):  # type: ignore[no-untyped-def]
+    """Count from the collected tags and ask for the scaled target (as the tree census
+    does). A walker not back on its site gives up its tag."""
+    motor[i] = STOP
+    ri[i, R_CENSUS] = walk_count(seen[i], gene_flag)
+    ri[i, R_WALK] = WALK_DONE
+    ri[i, R_WALK_END] = tick
+    ri[i, R_WALK_RESULT] = result
+    if result != RESULT_RETURNED:
+        ri[i, R_HAS_TAG] = 0
+    ri[i, R_REQUEST] = 1
+    stop[0] = 1
+
+
+@njit
+def walk_rule(i, tick, ri, nb, nb_dist, motor, seen, gene_flag, ci, cf, stop):  # type: ignore[no-untyped-def]
+    """One tick of the Leader's census walk (runs every tick while ``walking``).
+
+    ``seen`` (N, GX, GY) uint8 holds every robot's collected tags; ``gene_flag`` (GX, GY)
+    is the current target's bitmap. Sets ``motor[i]``; on conclusion R_CENSUS, R_REQUEST
+    = 1 and the stop flag (as the tree census).
+    """
+    phase = ri[i, R_WALK]
+    if phase == WALK_START:
+        seen[i, :, :] = 0
+        ri[i, R_WALK_TAGS] = 0
+        mark_tag(i, ri[i, R_TAG_X], ri[i, R_TAG_Y], seen, ci)
+        ri[i, R_WALK] = WALK_OUT
+        ri[i, R_WALK_SINCE] = tick
+        ri[i, R_WALK_SUB_SINCE] = tick
+        ri[i, R_WALK_GONE] = 0
+        ri[i, R_WALK_SEEN] = tick  # last tick it heard anybody
+        phase = WALK_OUT
+    collect(i, tick, ri, nb, nb_dist, seen, ci, cf)
+    for m in range(nb.shape[1]):
+        if nb[i, m, NB_ID] >= 0 and nb[i, m, NB_LAST] == tick:
+            ri[i, R_WALK_SEEN] = tick
+            break
+    if tick - ri[i, R_WALK_SINCE] > ci[C_TICKS_WALK_MAX]:
+        conclude(i, tick, ri, motor, seen, gene_flag, RESULT_TIMEOUT, stop)
+        return
+    if tick - ri[i, R_WALK_SEEN] > LOST_TICKS:
+        conclude(i, tick, ri, motor, seen, gene_flag, RESULT_LOST, stop)
+        return
+    if phase == WALK_SETTLE:
+        motor[i] = STOP
+        if tick - ri[i, R_WALK_SUB_SINCE] < ci[C_TICKS_SETTLE]:
+            return
+        if at_site(i, ri[i, R_WALK_SUB_SINCE], ri, nb, nb_dist, cf):
+            conclude(i, tick, ri, motor, seen, gene_flag, RESULT_RETURNED, stop)
+            return
+        ri[i, R_WALK] = WALK_OUT
+        ri[i, R_WALK_SUB_SINCE] = tick
+        phase = WALK_OUT
+    if ri[i, R_WALK_GONE] == 0:
+        if far_from_site(i, tick, ri, nb, nb_dist, cf):
+            ri[i, R_WALK_GONE] = 1
+    elif tick - ri[i, R_WALK_SUB_SINCE] >= ci[C_TICKS_COOLDOWN] and at_site(
+        i, tick - ci[C_TICKS_MOVE_FRESH], ri, nb, nb_dist, cf
+    ):
+        motor[i] = STOP
+        ri[i, R_WALK] = WALK_SETTLE
+        ri[i, R_WALK_SUB_SINCE] = tick
+        return
+    orbit(i, tick, nb, nb_dist, motor, ci, cf)
