@@ -11,7 +11,11 @@ walker hears tags and not only election messages.
 The walker knows it is back when, after having been well away from its site (a reading
 off the distance its site predicts by more than ``GONE_FRACTION`` d), it localises onto its
 own tag as a searcher does on a site (paper Sec. 4.1): two robots of neighbouring sites at
-about d and every robot heard at the distance its site predicts. It stops there, confirms
+about d and every robot heard at the distance its site predicts. A site with only one
+neighbour left (the tip of a line) is recognised by that neighbour at about d and every
+other robot heard (there may be none) within twice the pair tolerance of its predicted
+distance; a Leader
+with no neighbour left is alone and counts itself without walking. It stops there, confirms
 with readings taken standing still, and maps the collected tags onto the current target's
 bitmap: the cells a lattice flood fill from the grid's border cannot reach without crossing
 a collected tag (its own included) form the closed area bounded by the remnant, and the
@@ -45,6 +49,7 @@ from etswarm.algorithm.memory import (
     NB_TX,
     NB_TY,
     R_CENSUS,
+    R_ELECT_SINCE,
     R_HAS_TAG,
     R_REQUEST,
     R_TAG_X,
@@ -52,6 +57,7 @@ from etswarm.algorithm.memory import (
     R_WALK,
     R_WALK_END,
     R_WALK_GONE,
+    R_WALK_NEED,
     R_WALK_RESULT,
     R_WALK_SEEN,
     R_WALK_SINCE,
@@ -201,14 +207,32 @@ def far_from_site(i, tick, ri, nb, nb_dist, cf):  # type: ignore[no-untyped-def]
 
 
 @njit
+def site_neighbours(i, since, ri, nb):  # type: ignore[no-untyped-def]
+    """Placed robots robot i heard since ``since`` whose tags neighbour its own, at most 2."""
+    hx = ri[i, R_TAG_X]
+    hy = ri[i, R_TAG_Y]
+    count = 0
+    for m in range(nb.shape[1]):
+        if nb[i, m, NB_ID] < 0 or nb[i, m, NB_LAST] < since or not is_placed(nb[i, m, NB_STATE]):
+            continue
+        if lattice_distance(hx, hy, nb[i, m, NB_TX], nb[i, m, NB_TY]) < 1.01:
+            count += 1
+    return min(count, 2)
+
+
+@njit
 def at_site(i, since, ri, nb, nb_dist, cf):  # type: ignore[no-untyped-def]
     """Robot i localises onto its own tag from the placed robots heard since ``since``:
-    two of them on neighbouring sites are at d (within the pair tolerance, and within the
-    balance tolerance of each other), and every one is at the distance its tag predicts
-    (within the consistency tolerance)."""
+    R_WALK_NEED (2 or 1) of them on neighbouring sites are at d (within the pair
+    tolerance, and within the balance tolerance of each other), and every one is at the
+    distance its tag predicts (within the consistency tolerance; with one neighbour,
+    within twice the pair tolerance: at the tip of a line the others may be out of
+    range, and the neighbour alone places it within about 20 mm)."""
     d = cf[F_SPACING]
     hx = ri[i, R_TAG_X]
     hy = ri[i, R_TAG_Y]
+    need = ri[i, R_WALK_NEED]
+    tol = cf[F_CONSIST_TOL] if need >= 2 else 2.0 * cf[F_PAIR_TOL]
     pairs = 0
     lo = FAR
     hi = -FAR
@@ -217,12 +241,14 @@ def at_site(i, since, ri, nb, nb_dist, cf):  # type: ignore[no-untyped-def]
             continue
         pred = lattice_distance(hx, hy, nb[i, m, NB_TX], nb[i, m, NB_TY]) * d
         err = abs(nb_dist[i, m] - pred)
-        if err > cf[F_CONSIST_TOL]:
+        if err > tol:
             return False
         if abs(pred - d) < 1e-6 and err <= cf[F_PAIR_TOL]:
             pairs += 1
             lo = min(lo, nb_dist[i, m])
             hi = max(hi, nb_dist[i, m])
+    if need < 2:
+        return pairs >= 1
     return pairs >= 2 and hi - lo <= cf[F_BALANCE_TOL]
 
 
@@ -289,7 +315,11 @@ def walk_rule(i, tick, ri, nb, nb_dist, motor, seen, gene_flag, ci, cf, stop):  
         ri[i, R_WALK_SUB_SINCE] = tick
         ri[i, R_WALK_GONE] = 0
         ri[i, R_WALK_SEEN] = tick  # last tick it heard anybody
+        ri[i, R_WALK_NEED] = site_neighbours(i, ri[i, R_ELECT_SINCE], ri, nb)
         phase = WALK_OUT
+        if ri[i, R_WALK_NEED] == 0:
+            conclude(i, tick, ri, motor, seen, gene_flag, RESULT_RETURNED, stop)
+            return
     collect(i, tick, ri, nb, nb_dist, seen, ci, cf)
     for m in range(nb.shape[1]):
         if nb[i, m, NB_ID] >= 0 and nb[i, m, NB_LAST] == tick:
