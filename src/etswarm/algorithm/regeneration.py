@@ -4,10 +4,18 @@ A Stable robot whose neighbour count stays below NN turns Danger and starts an e
 for the next *epoch*; every robot of the remnant that hears it joins (and stops). The
 election floods the lowest ID together with a hop count, which also builds a spanning
 tree (each robot's parent is a neighbour one hop nearer the lowest ID); subtree sizes flow
-back up the tree (convergecast), so when nothing has changed for the quiet time the robot
-with the lowest ID knows it is the Leader and how many robots the remnant has (census
-``tree``). It then asks for ``scale(bitmap, n)`` placed where it keeps the most robots it
-knows of in place (the host computes it: ``R_REQUEST``), adopts it and announces
+back up the tree (convergecast). When nothing has changed for the quiet time, the robot
+with the lowest ID knows it is the Leader. How it then counts the remnant is the census
+method (``ETParams.census``, packed as ``C_CENSUS_WALK``):
+
+- ``tree``: the Leader's subtree count is the census, at once.
+- ``walk`` (the paper's): only robots that saw the damage themselves stand (the others
+  join with no candidate, ``NO_LEADER``), so the Leader sits on the damaged edge. It walks
+  round the remnant collecting the tags of the robots on its periphery, comes back onto
+  its site and counts the bitmap's 1-cells in the area those tags bound (``census_walk``).
+
+With its count n the Leader asks for ``scale(bitmap, n)`` placed where it keeps the most
+robots it knows of in place (the host computes it: ``R_REQUEST``), adopts it and announces
 (epoch, n, tx, ty); every robot adopts the announcement and relays it. Robots whose tag is
 in the new shape stay (the Leader Active with TS 1, the others Inactive with TS 2); the
 rest become Queued and join again through Search.
