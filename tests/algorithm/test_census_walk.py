@@ -6,7 +6,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from etswarm.algorithm.census_walk import walk_count
+from etswarm.algorithm.census_walk import opens_outside, walk_count
 from etswarm.algorithm.et_controller import ETController
 from etswarm.algorithm.memory import R_TAG_X, R_TAG_Y
 from etswarm.algorithm.params import ETParams
@@ -55,6 +55,18 @@ def test_walk_count_leaks_through_a_gap_in_the_ring() -> None:
     ring = [c for c in hexagon_cells(3) if c not in hexagon_cells(2) and c != (3, 0)]
     # Without one boundary tag the flood gets in: only the ring's cells are counted.
     assert walk_count(grid(ring), flags) == len(ring)
+
+
+def test_a_ring_round_a_hole_is_told_from_a_ring_round_the_outside() -> None:
+    ring = [c for c in hexagon_cells(3) if c not in hexagon_cells(2)]
+    # From (3, 0) on the outer ring, its free neighbour sites (directions 1, 2, 3) are
+    # outside: the walk went round the remnant.
+    assert opens_outside(grid(ring), 3 + 6, 0 + 6, 0b110001)
+    # The six robots round a one-site hole, the walker at (1, 0) among them: its only free
+    # neighbour site (the hole, direction 5) is shut in, so that walk went round the hole.
+    hole_ring = [(dx, dy) for dx, dy in NEIGHBOUR_OFFSETS.tolist()]
+    assert not opens_outside(grid(hole_ring), 1 + 6, 0 + 6, 0b011111)
+    assert opens_outside(grid(hole_ring), 1 + 6, 0 + 6, 0b111011)
 
 
 def test_census_parameter_is_checked_and_reaches_the_kernel() -> None:

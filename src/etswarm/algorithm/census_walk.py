@@ -24,7 +24,12 @@ the middle) is over-counted: the walk never sees the holes (the paper's method).
 
 If the walk takes longer than ``census_walk_timeout_s``, or the walker hears nobody for
 ``LOST_TICKS``, the count is made from what was collected so far and the Leader gives up
-its tag (it is not on its site), so the new target is grown without it as a seed.
+its tag (it is not on its site), so the new target is grown without it as a seed. Two
+failures fall back to the spanning-tree count (the Leader's subtree count when it was
+declared; the tree is built by the election anyway): a Leader still near its site after
+``STUCK_TICKS`` (hemmed in, e.g. next to a hole inside the remnant), and a walk whose ring
+of tags shuts in every free neighbour site of the Leader's own (it went round a hole, not
+round the outside). The event records which way the census ended.
 """
 
 from __future__ import annotations
@@ -51,7 +56,9 @@ from etswarm.algorithm.memory import (
     R_CENSUS,
     R_ELECT_SINCE,
     R_HAS_TAG,
+    R_MASK,
     R_REQUEST,
+    R_SUBCOUNT,
     R_TAG_X,
     R_TAG_Y,
     R_WALK,
@@ -94,9 +101,11 @@ RESULT_TREE = 1  # spanning-tree count (census "tree")
 RESULT_RETURNED = 2  # walked round and back onto its site
 RESULT_TIMEOUT = 3  # walk took too long: count from the tags collected so far
 RESULT_LOST = 4  # heard nobody for LOST_TICKS: count from the tags collected so far
+RESULT_STUCK = 5  # never got away from its site in STUCK_TICKS: the tree count instead
+RESULT_ENCLOSED = 6  # back, but its ring shuts its own free sites in: the tree count instead
 
 #: Names of the results, indexed by code (for events and summaries).
-RESULT_NAMES = ("none", "tree", "returned", "timeout", "lost")
+RESULT_NAMES = ("none", "tree", "returned", "timeout", "lost", "stuck", "enclosed")
 
 #: A reading off the walker's site prediction by more than this many d: it has left.
 GONE_FRACTION = 0.75
@@ -104,6 +113,8 @@ GONE_FRACTION = 0.75
 RELAY_TICKS = 31 * 15
 #: The walker gives up after hearing nobody this long (ticks).
 LOST_TICKS = 31 * 120
+#: A walker still near its site after this long (ticks) is hemmed in.
+STUCK_TICKS = 31 * 180
 
 
 @njit(inline="always")
@@ -122,15 +133,14 @@ def sends_tag(i, tick, ri):  # type: ignore[no-untyped-def]
 
 
 @njit
-def walk_count(seen, gene_flag):  # type: ignore[no-untyped-def]
-    """Census count from the collected tags: the 1-cells of the closed area they bound.
+def flood_outside(seen):  # type: ignore[no-untyped-def]
+    """Cells reachable from the grid's border without crossing a collected tag.
 
-    ``seen`` (GX, GY) uint8: 1 where a tag was collected (the walls); ``gene_flag``
-    (GX, GY) uint8: the current target's bitmap on the same grid. A flood fill over the
-    six lattice directions starts from every border cell that is not a wall and never
-    enters a wall; the 1-cells it does not reach (inside and on the boundary) are counted.
+    ``seen`` (GX, GY) uint8: 1 where a tag was collected (the walls). The flood fill runs
+    over the six lattice directions from every border cell that is not a wall. Returns a
+    (GX, GY) uint8 array, 1 outside.
     """
-    gx_n, gy_n = gene_flag.shape
+    gx_n, gy_n = seen.shape
     outside = np.zeros((gx_n, gy_n), dtype=np.uint8)
     stack = np.empty(gx_n * gy_n, dtype=np.int64)
     top = 0
@@ -155,12 +165,40 @@ def walk_count(seen, gene_flag):  # type: ignore[no-untyped-def]
             outside[nx, ny] = 1
             stack[top] = nx * gy_n + ny
             top += 1
+    return outside
+
+
+@njit
+def walk_count(seen, gene_flag):  # type: ignore[no-untyped-def]
+    """Census count from the collected tags: the 1-cells of the closed area they bound.
+
+    ``seen`` (GX, GY) uint8: the collected tags; ``gene_flag`` (GX, GY) uint8: the current
+    target's bitmap on the same grid. The 1-cells that ``flood_outside`` does not reach
+    (inside the ring of tags and on it) are counted.
+    """
+    outside = flood_outside(seen)
     count = 0
-    for gx in range(gx_n):
-        for gy in range(gy_n):
+    for gx in range(gene_flag.shape[0]):
+        for gy in range(gene_flag.shape[1]):
             if outside[gx, gy] == 0 and gene_flag[gx, gy] == 1:
                 count += 1
     return count
+
+
+@njit
+def opens_outside(seen, gx, gy, held):  # type: ignore[no-untyped-def]
+    """A free neighbour site of grid cell (gx, gy) (bit k of ``held`` clear: no robot in
+    lattice direction k) is outside the ring of ``seen`` tags: a walk that left from there
+    went round the outside of the remnant (not round a hole inside it)."""
+    outside = flood_outside(seen)
+    for k in range(6):
+        nx = gx + DIR_X[k]
+        ny = gy + DIR_Y[k]
+        if (held >> k) & 1 or nx < 0 or ny < 0 or nx >= seen.shape[0] or ny >= seen.shape[1]:
+            continue
+        if outside[nx, ny] == 1:
+            return True
+    return False
 
 
 @njit
@@ -283,15 +321,25 @@ def orbit(i, tick, nb, nb_dist, motor, ci, cf):  # type: ignore[no-untyped-def]
 
 
 @njit
-def conclude(i, tick, ri, motor, seen, gene_flag, result, stop):  # type: ignore[no-untyped-def]
-    """Count from the collected tags and ask for the scaled target (as the tree census
-    does). A walker not back on its site gives up its tag."""
+def conclude(i, tick, ri, motor, seen, gene_flag, ci, result, stop):  # type: ignore[no-untyped-def]
+    """Count and ask for the scaled target (as the tree census does): from the collected
+    tags, or with the tree count when the walk failed without leaving (stuck) or went
+    round a hole instead of the outside (enclosed). A walker not back on its site gives up
+    its tag."""
     motor[i] = STOP
-    ri[i, R_CENSUS] = walk_count(seen[i], gene_flag)
+    gx = ri[i, R_TAG_X] - ci[C_GENE_X0]
+    gy = ri[i, R_TAG_Y] - ci[C_GENE_Y0]
+    # R_MASK: the neighbour sites held when it last evaluated, before the election.
+    if result == RESULT_RETURNED and not opens_outside(seen[i], gx, gy, ri[i, R_MASK]):
+        result = RESULT_ENCLOSED
+    if result in (RESULT_STUCK, RESULT_ENCLOSED):
+        ri[i, R_CENSUS] = ri[i, R_SUBCOUNT]
+    else:
+        ri[i, R_CENSUS] = walk_count(seen[i], gene_flag)
     ri[i, R_WALK] = WALK_DONE
     ri[i, R_WALK_END] = tick
     ri[i, R_WALK_RESULT] = result
-    if result != RESULT_RETURNED:
+    if result in (RESULT_TIMEOUT, RESULT_LOST):
         ri[i, R_HAS_TAG] = 0
     ri[i, R_REQUEST] = 1
     stop[0] = 1
@@ -318,7 +366,7 @@ def walk_rule(i, tick, ri, nb, nb_dist, motor, seen, gene_flag, ci, cf, stop):  
         ri[i, R_WALK_NEED] = site_neighbours(i, ri[i, R_ELECT_SINCE], ri, nb)
         phase = WALK_OUT
         if ri[i, R_WALK_NEED] == 0:
-            conclude(i, tick, ri, motor, seen, gene_flag, RESULT_RETURNED, stop)
+            conclude(i, tick, ri, motor, seen, gene_flag, ci, RESULT_RETURNED, stop)
             return
     collect(i, tick, ri, nb, nb_dist, seen, ci, cf)
     for m in range(nb.shape[1]):
@@ -326,17 +374,17 @@ def walk_rule(i, tick, ri, nb, nb_dist, motor, seen, gene_flag, ci, cf, stop):  
             ri[i, R_WALK_SEEN] = tick
             break
     if tick - ri[i, R_WALK_SINCE] > ci[C_TICKS_WALK_MAX]:
-        conclude(i, tick, ri, motor, seen, gene_flag, RESULT_TIMEOUT, stop)
+        conclude(i, tick, ri, motor, seen, gene_flag, ci, RESULT_TIMEOUT, stop)
         return
     if tick - ri[i, R_WALK_SEEN] > LOST_TICKS:
-        conclude(i, tick, ri, motor, seen, gene_flag, RESULT_LOST, stop)
+        conclude(i, tick, ri, motor, seen, gene_flag, ci, RESULT_LOST, stop)
         return
     if phase == WALK_SETTLE:
         motor[i] = STOP
         if tick - ri[i, R_WALK_SUB_SINCE] < ci[C_TICKS_SETTLE]:
             return
         if at_site(i, ri[i, R_WALK_SUB_SINCE], ri, nb, nb_dist, cf):
-            conclude(i, tick, ri, motor, seen, gene_flag, RESULT_RETURNED, stop)
+            conclude(i, tick, ri, motor, seen, gene_flag, ci, RESULT_RETURNED, stop)
             return
         ri[i, R_WALK] = WALK_OUT
         ri[i, R_WALK_SUB_SINCE] = tick
@@ -344,6 +392,9 @@ def walk_rule(i, tick, ri, nb, nb_dist, motor, seen, gene_flag, ci, cf, stop):  
     if ri[i, R_WALK_GONE] == 0:
         if far_from_site(i, tick, ri, nb, nb_dist, cf):
             ri[i, R_WALK_GONE] = 1
+        elif tick - ri[i, R_WALK_SINCE] > STUCK_TICKS:
+            conclude(i, tick, ri, motor, seen, gene_flag, ci, RESULT_STUCK, stop)
+            return
     elif tick - ri[i, R_WALK_SUB_SINCE] >= ci[C_TICKS_COOLDOWN] and at_site(
         i, tick - ci[C_TICKS_MOVE_FRESH], ri, nb, nb_dist, cf
     ):
