@@ -1,15 +1,17 @@
 """Regeneration figures: per shape, damage and census method, over seeds, how remnants fare.
 
     .venv/bin/python benchmarks/bench_regeneration.py [--seeds 10] [--max-time 14400]
-        [--census tree|walk|both] [--jobs 2] [--case triangle:split x=0 ...]
+        [--census tree|walk|both] [--jobs 2] [--case "triangle:split x=0" ...]
 
-For each case and census method: runs whose first formation completed, runs in which every
-remnant of at least three robots re-formed its scaled target, exact census, at most one
-Leader per remnant, runs with a tag held twice in a remnant, and the median time from damage
-to re-formed; then the census itself over all censuses taken (one per remnant that elected
-a Leader): error (count minus the remnant's robots at the census; mean and max |error|),
-time from Leader to count and from the election's start to count (simulated s), and how
-the walks ended (returned / timeout / lost).
+A case is ``SHAPE:DAMAGE`` or ``SHAPE/N:DAMAGE`` (N robots forming scale(SHAPE, N), --fit).
+For each case and census method, one Markdown table row: runs whose first formation
+completed (only those count further), runs in which every remnant of at least three robots
+re-formed its scaled target (success), at most one Leader per remnant, runs with a tag held
+twice in a remnant, the median time from damage to re-formed; then the census itself over
+all censuses taken (one per remnant that elected a Leader): exact ones, error (count minus
+the remnant's robots at the census; mean and max |error|), mean time from Leader to count
+and from the election's start to count (simulated s), and how the censuses ended (tree;
+walks: returned, enclosed, stuck, timeout, lost).
 """
 
 from __future__ import annotations
@@ -35,15 +37,29 @@ CASES = (
 def one_run(args: tuple[str, str, str, int, float]) -> dict[str, Any]:
     """Run one case with one seed and census method; return its JSON summary."""
     shape, damage, census, seed, max_time = args
+    name, _, robots = shape.partition("/")
     config = RunConfig(
-        shape=shape, seed=seed, max_time_s=max_time, damage=(damage,), census=census
+        shape=name,
+        robots=int(robots) if robots else None,
+        fit=bool(robots),
+        seed=seed,
+        max_time_s=max_time,
+        damage=(damage,),
+        census=census,
     )
     return ETRun(config).run()
 
 
+HEADER = (
+    "| shape | damage | census | formed | reformed | <=1 leader | shared tag | median "
+    "re-formation min | censuses | exact | error mean | max abs error | s leader->count | "
+    "s election->count | ends |\n" + "|---" * 15 + "|"
+)
+
+
 def report(shape: str, damage: str, census: str, seeds: int, runs: list[dict[str, Any]]) -> str:
     """One table row for the summaries ``runs`` of a case and census method."""
-    formed = reformed = exact = leaders = dups = 0
+    formed = reformed = leaders = dups = 0
     times: list[float] = []
     errors: list[int] = []
     after_leader: list[float] = []
@@ -55,7 +71,6 @@ def report(shape: str, damage: str, census: str, seeds: int, runs: list[dict[str
         formed += 1
         comps = [c for c in s["components"] if c["robots"] >= 3]
         reformed += all(c["formed"] for c in comps)
-        exact += all(c["census_count"] == c["robots"] for c in comps)
         leaders += s["max_leaders_per_component"] <= 1
         dups += bool(s["duplicate_tags"])
         times += [c["time_to_stable_s"] / 60 for c in comps if c["formed"]]
@@ -68,17 +83,20 @@ def report(shape: str, damage: str, census: str, seeds: int, runs: list[dict[str
             results[e["result"]] += 1
 
     def mean(values: list[float] | list[int]) -> str:
-        return f"{statistics.fmean(values):.1f}" if values else "-"
+        return f"{statistics.fmean(values):+.2f}" if values else "-"
 
-    median = f"{statistics.median(times):.1f} min" if times else "-"
-    max_abs = max((abs(e) for e in errors), default=0)
-    ends = " ".join(f"{k} {v}" for k, v in sorted(results.items()))
+    def avg(values: list[float]) -> str:
+        return f"{statistics.fmean(values):.0f}" if values else "-"
+
+    median = f"{statistics.median(times):.1f}" if times else "-"
+    max_abs = max((abs(e) for e in errors), default=0) if errors else "-"
+    exact_censuses = sum(e == 0 for e in errors)
+    ends = ", ".join(f"{k} {v}" for k, v in sorted(results.items()))
     return (
-        f"{shape:9s} {damage:18s} {census:4s}  formed {formed}/{seeds}, all reformed "
-        f"{reformed}/{formed}, census exact {exact}/{formed}, <=1 leader {leaders}/{formed}, "
-        f"shared tag {dups}, median re-formation {median} | censuses {len(errors)}: "
-        f"error mean {mean(errors)} max|{max_abs}|, s leader->count {mean(after_leader)}, "
-        f"s election->count {mean(after_election)}, ends: {ends}"
+        f"| {shape} | {damage} | {census} | {formed}/{seeds} | {reformed}/{formed} | "
+        f"{leaders}/{formed} | {dups} | {median} | {len(errors)} | "
+        f"{exact_censuses}/{len(errors)} | {mean(errors)} | {max_abs} | {avg(after_leader)} | "
+        f"{avg(after_election)} | {ends} |"
     )
 
 
@@ -104,6 +122,7 @@ def main() -> None:
     methods = ("tree", "walk") if args.census == "both" else (args.census,)
     cases = args.case or list(CASES)
     print(f"load average {os.getloadavg()}")
+    print(HEADER)
     seeds = range(args.first_seed, args.first_seed + args.seeds)
     with ProcessPoolExecutor(max_workers=args.jobs) as pool:
         for shape, damage in cases:
