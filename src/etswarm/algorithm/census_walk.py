@@ -11,7 +11,9 @@ walker hears tags and not only election messages.
 The walker knows it is back when, after having been well away from its site (a reading
 off the distance its site predicts by more than ``GONE_FRACTION`` d), it localises onto its
 own tag as a searcher does on a site (paper Sec. 4.1): two robots of neighbouring sites at
-about d and every robot heard at the distance its site predicts. A site with only one
+about d, every robot heard at the distance its site predicts, and every robot that held a
+neighbouring site when it left heard again (else the mirror site across two of them,
+outside the remnant, looks the same when the third is out of range). A site with only one
 neighbour left (the tip of a line) is recognised by that neighbour at about d and every
 other robot heard (there may be none) within twice the pair tolerance of its predicted
 distance; a Leader
@@ -44,6 +46,7 @@ from etswarm.algorithm.kernel_util import (
     LEFT,
     RIGHT,
     STOP,
+    direction_index,
     is_placed,
     lattice_distance,
 )
@@ -56,15 +59,15 @@ from etswarm.algorithm.memory import (
     R_CENSUS,
     R_ELECT_SINCE,
     R_HAS_TAG,
-    R_MASK,
     R_REQUEST,
     R_SUBCOUNT,
     R_TAG_X,
     R_TAG_Y,
     R_WALK,
+    R_WALK_DIRS,
     R_WALK_END,
     R_WALK_GONE,
-    R_WALK_NEED,
+    R_WALK_HEARD,
     R_WALK_RESULT,
     R_WALK_SEEN,
     R_WALK_SINCE,
@@ -246,31 +249,39 @@ def far_from_site(i, tick, ri, nb, nb_dist, cf):  # type: ignore[no-untyped-def]
 
 @njit
 def site_neighbours(i, since, ri, nb):  # type: ignore[no-untyped-def]
-    """Placed robots robot i heard since ``since`` whose tags neighbour its own, at most 2."""
+    """Bit mask of the lattice directions k in which robot i heard, since ``since``, a
+    placed robot on the neighbouring site of its own."""
     hx = ri[i, R_TAG_X]
     hy = ri[i, R_TAG_Y]
-    count = 0
+    dirs = 0
     for m in range(nb.shape[1]):
         if nb[i, m, NB_ID] < 0 or nb[i, m, NB_LAST] < since or not is_placed(nb[i, m, NB_STATE]):
             continue
-        if lattice_distance(hx, hy, nb[i, m, NB_TX], nb[i, m, NB_TY]) < 1.01:
-            count += 1
-    return min(count, 2)
+        k = direction_index(nb[i, m, NB_TX] - hx, nb[i, m, NB_TY] - hy)
+        if k >= 0:
+            dirs |= 1 << k
+    return dirs
 
 
 @njit
 def at_site(i, since, ri, nb, nb_dist, cf):  # type: ignore[no-untyped-def]
-    """Robot i localises onto its own tag from the placed robots heard since ``since``:
-    R_WALK_NEED (2 or 1) of them on neighbouring sites are at d (within the pair
-    tolerance, and within the balance tolerance of each other), and every one is at the
-    distance its tag predicts (within the consistency tolerance; with one neighbour,
-    within twice the pair tolerance: at the tip of a line the others may be out of
-    range, and the neighbour alone places it within about 20 mm)."""
+    """Robot i localises onto its own tag from the placed robots heard since ``since``.
+
+    Every neighbouring site that was held when the walk began (R_WALK_DIRS) has been heard
+    from, and every robot heard is at the distance its tag predicts (within the
+    consistency tolerance): this tells the site from its mirror across two of its
+    neighbours. Two of the neighbours are at d within the pair tolerance (and within the
+    balance tolerance of each other). A site with one neighbour (the tip of a line, where
+    the others may be out of range) needs that one at d within the pair tolerance and
+    every robot heard within twice the pair tolerance: it places the robot within ~20 mm.
+    """
     d = cf[F_SPACING]
     hx = ri[i, R_TAG_X]
     hy = ri[i, R_TAG_Y]
-    need = ri[i, R_WALK_NEED]
-    tol = cf[F_CONSIST_TOL] if need >= 2 else 2.0 * cf[F_PAIR_TOL]
+    dirs = ri[i, R_WALK_DIRS]
+    single = dirs != 0 and dirs & (dirs - 1) == 0
+    tol = 2.0 * cf[F_PAIR_TOL] if single else cf[F_CONSIST_TOL]
+    heard = 0
     pairs = 0
     lo = FAR
     hi = -FAR
@@ -281,11 +292,17 @@ def at_site(i, since, ri, nb, nb_dist, cf):  # type: ignore[no-untyped-def]
         err = abs(nb_dist[i, m] - pred)
         if err > tol:
             return False
-        if abs(pred - d) < 1e-6 and err <= cf[F_PAIR_TOL]:
+        k = direction_index(nb[i, m, NB_TX] - hx, nb[i, m, NB_TY] - hy)
+        if k < 0:
+            continue
+        heard |= 1 << k
+        if err <= cf[F_PAIR_TOL]:
             pairs += 1
             lo = min(lo, nb_dist[i, m])
             hi = max(hi, nb_dist[i, m])
-    if need < 2:
+    if dirs & ~heard:
+        return False
+    if single:
         return pairs >= 1
     return pairs >= 2 and hi - lo <= cf[F_BALANCE_TOL]
 
@@ -329,8 +346,7 @@ def conclude(i, tick, ri, motor, seen, gene_flag, ci, result, stop):  # type: ig
     motor[i] = STOP
     gx = ri[i, R_TAG_X] - ci[C_GENE_X0]
     gy = ri[i, R_TAG_Y] - ci[C_GENE_Y0]
-    # R_MASK: the neighbour sites held when it last evaluated, before the election.
-    if result == RESULT_RETURNED and not opens_outside(seen[i], gx, gy, ri[i, R_MASK]):
+    if result == RESULT_RETURNED and not opens_outside(seen[i], gx, gy, ri[i, R_WALK_DIRS]):
         result = RESULT_ENCLOSED
     if result in (RESULT_STUCK, RESULT_ENCLOSED):
         ri[i, R_CENSUS] = ri[i, R_SUBCOUNT]
@@ -362,21 +378,21 @@ def walk_rule(i, tick, ri, nb, nb_dist, motor, seen, gene_flag, ci, cf, stop):  
         ri[i, R_WALK_SINCE] = tick
         ri[i, R_WALK_SUB_SINCE] = tick
         ri[i, R_WALK_GONE] = 0
-        ri[i, R_WALK_SEEN] = tick  # last tick it heard anybody
-        ri[i, R_WALK_NEED] = site_neighbours(i, ri[i, R_ELECT_SINCE], ri, nb)
+        ri[i, R_WALK_HEARD] = tick
+        ri[i, R_WALK_DIRS] = site_neighbours(i, ri[i, R_ELECT_SINCE], ri, nb)
         phase = WALK_OUT
-        if ri[i, R_WALK_NEED] == 0:
+        if ri[i, R_WALK_DIRS] == 0:
             conclude(i, tick, ri, motor, seen, gene_flag, ci, RESULT_RETURNED, stop)
             return
     collect(i, tick, ri, nb, nb_dist, seen, ci, cf)
     for m in range(nb.shape[1]):
         if nb[i, m, NB_ID] >= 0 and nb[i, m, NB_LAST] == tick:
-            ri[i, R_WALK_SEEN] = tick
+            ri[i, R_WALK_HEARD] = tick
             break
     if tick - ri[i, R_WALK_SINCE] > ci[C_TICKS_WALK_MAX]:
         conclude(i, tick, ri, motor, seen, gene_flag, ci, RESULT_TIMEOUT, stop)
         return
-    if tick - ri[i, R_WALK_SEEN] > LOST_TICKS:
+    if tick - ri[i, R_WALK_HEARD] > LOST_TICKS:
         conclude(i, tick, ri, motor, seen, gene_flag, ci, RESULT_LOST, stop)
         return
     if phase == WALK_SETTLE:

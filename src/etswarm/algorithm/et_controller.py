@@ -30,6 +30,7 @@ from etswarm.algorithm.memory import (
     R_TAG_X,
     R_TAG_Y,
     R_TS,
+    R_WALK,
     SLOT_FIELDS,
     allocate,
 )
@@ -154,9 +155,12 @@ class ETController:
         return np.flatnonzero(self.ri[:, R_REQUEST] == 1)
 
     def known_tags(self, i: int, since_tick: int) -> set[tuple[int, int]]:
-        """Tags robot ``i`` knows to be held: its own and those of the placed robots in its
-        table heard since ``since_tick``."""
+        """Tags robot ``i`` knows to be held: its own, those of the placed robots in its
+        table heard since ``since_tick``, and those it collected on a census walk."""
         known = {(int(self.ri[i, R_TAG_X]), int(self.ri[i, R_TAG_Y]))}
+        if self.walk_seen.shape[1:] == self.grid_shape and self.ri[i, R_WALK] != 0:
+            gx, gy = np.nonzero(self.walk_seen[i])
+            known.update(zip((gx + self.x0).tolist(), (gy + self.y0).tolist(), strict=True))
         for row in self.nb[i]:
             if row[NB_ID] >= 0 and row[NB_STATE] >= State.INACTIVE and row[NB_LAST] >= since_tick:
                 known.add((int(row[NB_TX]), int(row[NB_TY])))

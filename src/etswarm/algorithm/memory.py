@@ -88,8 +88,9 @@ R_WALK_END = 53  # tick the census was concluded (walk or tree)
 R_WALK_RESULT = 54  # WALK_RESULT_*: how the walk ended
 R_WALK_SEEN = 55  # tick this robot last heard a walking Leader (it then also sends its tag)
 R_WALK_TAGS = 56  # distinct tags the walker collected
-R_WALK_NEED = 57  # robots of neighbouring sites the walker's return must hear (0..2)
-R_FIELDS = 58
+R_WALK_DIRS = 57  # bit k: a robot held the walker's neighbour site in direction k
+R_WALK_HEARD = 58  # tick the walker last heard any robot
+R_FIELDS = 59
 
 PHASE_NORMAL = 0
 PHASE_ELECTING = 1
