@@ -28,8 +28,9 @@ If the walk takes longer than ``census_walk_timeout_s``, or the walker hears nob
 ``LOST_TICKS``, the count is made from what was collected so far and the Leader gives up
 its tag (it is not on its site), so the new target is grown without it as a seed. Two
 failures fall back to the spanning-tree count (the Leader's subtree count when it was
-declared; the tree is built by the election anyway): a Leader still near its site after
-``STUCK_TICKS`` (hemmed in, e.g. next to a hole inside the remnant), and a walk whose ring
+declared; the tree is built by the election anyway): a Leader hemmed in (five of its
+neighbouring sites held, e.g. next to a hole inside the remnant; it does not walk) or still
+near its site after ``STUCK_TICKS``, and a walk whose ring
 of tags shuts in every free neighbour site of the Leader's own (it went round a hole, not
 round the outside). The event records which way the census ended.
 """
@@ -118,6 +119,9 @@ RELAY_TICKS = 31 * 15
 LOST_TICKS = 31 * 120
 #: A walker still near its site after this long (ticks) is hemmed in.
 STUCK_TICKS = 31 * 180
+#: A Leader with this many neighbouring sites held cannot get out (its one free site
+#: lies between two held ones): it does not walk (result "stuck").
+HEMMED_NEIGHBOURS = 5
 
 
 @njit(inline="always")
@@ -381,8 +385,15 @@ def walk_rule(i, tick, ri, nb, nb_dist, motor, seen, gene_flag, ci, cf, stop):  
         ri[i, R_WALK_HEARD] = tick
         ri[i, R_WALK_DIRS] = site_neighbours(i, ri[i, R_ELECT_SINCE], ri, nb)
         phase = WALK_OUT
-        if ri[i, R_WALK_DIRS] == 0:
+        dirs = ri[i, R_WALK_DIRS]
+        if dirs == 0:
             conclude(i, tick, ri, motor, seen, gene_flag, ci, RESULT_RETURNED, stop)
+            return
+        held = 0
+        for k in range(6):
+            held += (dirs >> k) & 1
+        if held >= HEMMED_NEIGHBOURS:
+            conclude(i, tick, ri, motor, seen, gene_flag, ci, RESULT_STUCK, stop)
             return
     collect(i, tick, ri, nb, nb_dist, seen, ci, cf)
     for m in range(nb.shape[1]):
