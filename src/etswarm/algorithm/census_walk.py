@@ -8,12 +8,15 @@ robots on the remnant's periphery. Robots that hear a walking Leader's status me
 their own status (which carries their tag) every other message period for a while, so the
 walker hears tags and not only election messages.
 
-The walker knows it is back when, after having been well away from its site (a reading
-off the distance its site predicts by more than ``GONE_FRACTION`` d), it localises onto its
+The walker knows it is back when, after having been well away from its site (a robot of
+a neighbouring site unheard for ``GONE_TICKS``: out of radio range; and likewise for the
+doorstep below), it localises onto its
 own tag as a searcher does on a site (paper Sec. 4.1): two robots of neighbouring sites at
 about d, every robot heard at the distance its site predicts, and every robot that held a
 neighbouring site when it left heard again (else the mirror site across two of them,
-outside the remnant, looks the same when the third is out of range). A site with only one
+outside the remnant, looks the same when the third is out of range). A site with five
+neighbours held is a one-wide pocket the walk passes but cannot re-enter: the walker may
+stop on its doorstep (the free site in front of it) instead and take that site. A site with only one
 neighbour left (the tip of a line) is recognised by that neighbour at about d and every
 other robot heard (there may be none) within twice the pair tolerance of its predicted
 distance; a Leader
@@ -28,9 +31,9 @@ If the walk takes longer than ``census_walk_timeout_s``, or the walker hears nob
 ``LOST_TICKS``, the count is made from what was collected so far and the Leader gives up
 its tag (it is not on its site), so the new target is grown without it as a seed. Two
 failures fall back to the spanning-tree count (the Leader's subtree count when it was
-declared; the tree is built by the election anyway): a Leader hemmed in (five of its
-neighbouring sites held, e.g. next to a hole inside the remnant; it does not walk) or still
-near its site after ``STUCK_TICKS``, and a walk whose ring
+declared; the tree is built by the election anyway): a Leader hemmed in (``hemmed``: next
+to a hole inside the remnant; it does not walk) or still near its site after
+``STUCK_TICKS``, and a walk whose ring
 of tags shuts in every free neighbour site of the Leader's own (it went round a hole, not
 round the outside). The event records which way the census ended.
 """
@@ -48,12 +51,14 @@ from etswarm.algorithm.kernel_util import (
     RIGHT,
     STOP,
     direction_index,
+    gene_at,
     is_placed,
     lattice_distance,
 )
 from etswarm.algorithm.memory import (
     NB_ID,
     NB_LAST,
+    NB_MASK,
     NB_STATE,
     NB_TX,
     NB_TY,
@@ -66,6 +71,7 @@ from etswarm.algorithm.memory import (
     R_TAG_Y,
     R_WALK,
     R_WALK_DIRS,
+    R_WALK_DOOR,
     R_WALK_END,
     R_WALK_GONE,
     R_WALK_HEARD,
@@ -107,21 +113,19 @@ RESULT_TIMEOUT = 3  # walk took too long: count from the tags collected so far
 RESULT_LOST = 4  # heard nobody for LOST_TICKS: count from the tags collected so far
 RESULT_STUCK = 5  # never got away from its site in STUCK_TICKS: the tree count instead
 RESULT_ENCLOSED = 6  # back, but its ring shuts its own free sites in: the tree count instead
+RESULT_DOORSTEP = 7  # back on the free site in front of its pocket site, which it takes
 
 #: Names of the results, indexed by code (for events and summaries).
-RESULT_NAMES = ("none", "tree", "returned", "timeout", "lost", "stuck", "enclosed")
+RESULT_NAMES = ("none", "tree", "returned", "timeout", "lost", "stuck", "enclosed", "doorstep")
 
-#: A reading off the walker's site prediction by more than this many d: it has left.
-GONE_FRACTION = 0.75
+#: The walker has left once a robot of a neighbouring site is unheard this long (ticks).
+GONE_TICKS = 31 * 5
 #: Ticks a robot keeps sending its tag (every other period) after hearing a walker.
 RELAY_TICKS = 31 * 15
 #: The walker gives up after hearing nobody this long (ticks).
 LOST_TICKS = 31 * 120
 #: A walker still near its site after this long (ticks) is hemmed in.
 STUCK_TICKS = 31 * 180
-#: A Leader with this many neighbouring sites held cannot get out (its one free site
-#: lies between two held ones): it does not walk (result "stuck").
-HEMMED_NEIGHBOURS = 5
 
 
 @njit(inline="always")
@@ -236,19 +240,33 @@ def collect(i, tick, ri, nb, nb_dist, seen, ci, cf):  # type: ignore[no-untyped-
 
 
 @njit
-def far_from_site(i, tick, ri, nb, nb_dist, cf):  # type: ignore[no-untyped-def]
-    """A placed robot heard this tick is off the distance robot i's site predicts by more
-    than GONE_FRACTION d: robot i is well away from its site."""
-    d = cf[F_SPACING]
-    hx = ri[i, R_TAG_X]
-    hy = ri[i, R_TAG_Y]
-    for m in range(nb.shape[1]):
-        if nb[i, m, NB_ID] < 0 or nb[i, m, NB_LAST] != tick or not is_placed(nb[i, m, NB_STATE]):
+def unheard(i, tick, x, y, dirs, nb):  # type: ignore[no-untyped-def]
+    """A robot of a neighbouring site of (x, y) (bit k of ``dirs``: the site in direction
+    k) has not been heard for ``GONE_TICKS`` (it is out of radio range, over 70 mm away),
+    or is no longer in robot i's table."""
+    for k in range(6):
+        if not (dirs >> k) & 1:
             continue
-        pred = lattice_distance(hx, hy, nb[i, m, NB_TX], nb[i, m, NB_TY]) * d
-        if abs(nb_dist[i, m] - pred) > GONE_FRACTION * d:
+        last = -1
+        for m in range(nb.shape[1]):
+            if nb[i, m, NB_ID] < 0 or not is_placed(nb[i, m, NB_STATE]):
+                continue
+            if nb[i, m, NB_TX] == x + DIR_X[k] and nb[i, m, NB_TY] == y + DIR_Y[k]:
+                last = max(last, nb[i, m, NB_LAST])
+        if last < 0 or tick - last > GONE_TICKS:
             return True
     return False
+
+
+@njit
+def gone(i, tick, ri, nb):  # type: ignore[no-untyped-def]
+    """Robot i has really left its site: a robot of one of its neighbouring sites when the
+    walk began (R_WALK_DIRS) is out of earshot, and so is one of the doorstep's (when its
+    site is a pocket: on the doorstep some of the site's neighbours are out of range)."""
+    if not unheard(i, tick, ri[i, R_TAG_X], ri[i, R_TAG_Y], ri[i, R_WALK_DIRS], nb):
+        return False
+    found, x, y, door_dirs = doorstep(ri, i)
+    return not found or unheard(i, tick, x, y, door_dirs, nb)
 
 
 @njit
@@ -268,23 +286,49 @@ def site_neighbours(i, since, ri, nb):  # type: ignore[no-untyped-def]
 
 
 @njit
-def at_site(i, since, ri, nb, nb_dist, cf):  # type: ignore[no-untyped-def]
-    """Robot i localises onto its own tag from the placed robots heard since ``since``.
-
-    Every neighbouring site that was held when the walk began (R_WALK_DIRS) has been heard
-    from, and every robot heard is at the distance its tag predicts (within the
-    consistency tolerance): this tells the site from its mirror across two of its
-    neighbours. Two of the neighbours are at d within the pair tolerance (and within the
-    balance tolerance of each other). A site with one neighbour (the tip of a line, where
-    the others may be out of range) needs that one at d within the pair tolerance and
-    every robot heard within twice the pair tolerance: it places the robot within ~20 mm.
-    """
-    d = cf[F_SPACING]
+def hemmed(i, ri, nb, dirs):  # type: ignore[no-untyped-def]
+    """Robot i cannot get out of its site: at most one neighbouring site s is free (bit
+    clear in ``dirs``), and the two held sites on either side of s report (neighbour-site
+    bits of their status) the sites beyond s held as well, so s is a pocket (a hole inside
+    the remnant, or a dent one body wide)."""
+    free = -1
+    for k in range(6):
+        if not (dirs >> k) & 1:
+            if free >= 0:
+                return False
+            free = k
+    if free < 0:
+        return True
     hx = ri[i, R_TAG_X]
     hy = ri[i, R_TAG_Y]
-    dirs = ri[i, R_WALK_DIRS]
+    beyond = 0
+    for side in range(2):
+        kk = (free + 5) % 6 if side == 0 else (free + 1) % 6
+        for m in range(nb.shape[1]):
+            if nb[i, m, NB_ID] < 0 or not is_placed(nb[i, m, NB_STATE]):
+                continue
+            if nb[i, m, NB_TX] == hx + DIR_X[kk] and nb[i, m, NB_TY] == hy + DIR_Y[kk]:
+                # Seen from that neighbour, the site beyond s lies in direction ``free``.
+                beyond += (nb[i, m, NB_MASK] >> free) & 1
+                break
+    return beyond == 2
+
+
+@njit
+def at_tag(i, since, x, y, dirs, pair_tol, nb, nb_dist, cf):  # type: ignore[no-untyped-def]
+    """Robot i localises onto tag (x, y) from the placed robots heard since ``since``.
+
+    Every neighbouring site in ``dirs`` (bit k: a robot holds (x, y) + direction k) has
+    been heard from, and every robot heard is at the distance its tag predicts (within
+    the consistency tolerance): this tells the site from its mirror across two of its
+    neighbours. Two of the neighbours are at d within ``pair_tol`` (mm; and within the
+    balance tolerance of each other). A site with one neighbour (the tip of a line, where
+    the others may be out of range) needs that one at d within ``pair_tol`` and every
+    robot heard within twice that: it places the robot within ~20 mm.
+    """
+    d = cf[F_SPACING]
     single = dirs != 0 and dirs & (dirs - 1) == 0
-    tol = 2.0 * cf[F_PAIR_TOL] if single else cf[F_CONSIST_TOL]
+    tol = 2.0 * pair_tol if single else cf[F_CONSIST_TOL]
     heard = 0
     pairs = 0
     lo = FAR
@@ -292,15 +336,15 @@ def at_site(i, since, ri, nb, nb_dist, cf):  # type: ignore[no-untyped-def]
     for m in range(nb.shape[1]):
         if nb[i, m, NB_ID] < 0 or nb[i, m, NB_LAST] < since or not is_placed(nb[i, m, NB_STATE]):
             continue
-        pred = lattice_distance(hx, hy, nb[i, m, NB_TX], nb[i, m, NB_TY]) * d
+        pred = lattice_distance(x, y, nb[i, m, NB_TX], nb[i, m, NB_TY]) * d
         err = abs(nb_dist[i, m] - pred)
         if err > tol:
             return False
-        k = direction_index(nb[i, m, NB_TX] - hx, nb[i, m, NB_TY] - hy)
+        k = direction_index(nb[i, m, NB_TX] - x, nb[i, m, NB_TY] - y)
         if k < 0:
             continue
         heard |= 1 << k
-        if err <= cf[F_PAIR_TOL]:
+        if err <= pair_tol:
             pairs += 1
             lo = min(lo, nb_dist[i, m])
             hi = max(hi, nb_dist[i, m])
@@ -309,6 +353,51 @@ def at_site(i, since, ri, nb, nb_dist, cf):  # type: ignore[no-untyped-def]
     if single:
         return pairs >= 1
     return pairs >= 2 and hi - lo <= cf[F_BALANCE_TOL]
+
+
+@njit
+def doorstep(ri, i):  # type: ignore[no-untyped-def]
+    """The free site in front of robot i's site when that site is a one-wide pocket (five
+    of its neighbouring sites held: the walk passes its mouth but cannot get back in).
+
+    Returns ``(found, x, y, dirs)``: the site and its held neighbouring sites as bits.
+    """
+    hx = ri[i, R_TAG_X]
+    hy = ri[i, R_TAG_Y]
+    dirs = ri[i, R_WALK_DIRS]
+    free = -1
+    for k in range(6):
+        if not (dirs >> k) & 1:
+            if free >= 0:
+                return False, 0, 0, 0
+            free = k
+    if free < 0:
+        return False, 0, 0, 0
+    x = hx + DIR_X[free]
+    y = hy + DIR_Y[free]
+    door_dirs = 0
+    for q in range(6):
+        j = direction_index(x + DIR_X[q] - hx, y + DIR_Y[q] - hy)
+        if j >= 0 and (dirs >> j) & 1:
+            door_dirs |= 1 << q
+    return True, x, y, door_dirs
+
+
+@njit
+def back(i, since, ri, nb, nb_dist, cf):  # type: ignore[no-untyped-def]
+    """Where robot i is back: 1 on its own site, 2 on the doorstep of its pocket site
+    (``doorstep``), 0 neither."""
+    pair_tol = cf[F_PAIR_TOL]
+    hx = ri[i, R_TAG_X]
+    hy = ri[i, R_TAG_Y]
+    if at_tag(i, since, hx, hy, ri[i, R_WALK_DIRS], pair_tol, nb, nb_dist, cf):
+        return 1
+    found, x, y, door_dirs = doorstep(ri, i)
+    # The doorstep's two held neighbours are not adjacent (1.7 d apart), so the shape's
+    # own placement errors add up there: twice the pair tolerance.
+    if found and at_tag(i, since, x, y, door_dirs, 2.0 * pair_tol, nb, nb_dist, cf):
+        return 2
+    return 0
 
 
 @njit
@@ -345,12 +434,14 @@ def orbit(i, tick, nb, nb_dist, motor, ci, cf):  # type: ignore[no-untyped-def]
 def conclude(i, tick, ri, motor, seen, gene_flag, ci, result, stop):  # type: ignore[no-untyped-def]
     """Count and ask for the scaled target (as the tree census does): from the collected
     tags, or with the tree count when the walk failed without leaving (stuck) or went
-    round a hole instead of the outside (enclosed). A walker not back on its site gives up
-    its tag."""
+    round a hole instead of the outside (enclosed). A walker on the doorstep of its pocket
+    site takes the doorstep as its site; one that is lost or out of time gives up its tag.
+    """
     motor[i] = STOP
     gx = ri[i, R_TAG_X] - ci[C_GENE_X0]
     gy = ri[i, R_TAG_Y] - ci[C_GENE_Y0]
-    if result == RESULT_RETURNED and not opens_outside(seen[i], gx, gy, ri[i, R_WALK_DIRS]):
+    back_home = result in (RESULT_RETURNED, RESULT_DOORSTEP)
+    if back_home and not opens_outside(seen[i], gx, gy, ri[i, R_WALK_DIRS]):
         result = RESULT_ENCLOSED
     if result in (RESULT_STUCK, RESULT_ENCLOSED):
         ri[i, R_CENSUS] = ri[i, R_SUBCOUNT]
@@ -361,6 +452,17 @@ def conclude(i, tick, ri, motor, seen, gene_flag, ci, result, stop):  # type: ig
     ri[i, R_WALK_RESULT] = result
     if result in (RESULT_TIMEOUT, RESULT_LOST):
         ri[i, R_HAS_TAG] = 0
+    elif result == RESULT_DOORSTEP:
+        # It stands on the doorstep: that is its site now (if the shape has it), and its
+        # old one is empty.
+        seen[i, gx, gy] = 0
+        found, x, y, _ = doorstep(ri, i)
+        if found and gene_at(gene_flag, ci, x, y) == 1:
+            ri[i, R_TAG_X] = x
+            ri[i, R_TAG_Y] = y
+            mark_tag(i, x, y, seen, ci)
+        else:
+            ri[i, R_HAS_TAG] = 0
     ri[i, R_REQUEST] = 1
     stop[0] = 1
 
@@ -389,10 +491,7 @@ def walk_rule(i, tick, ri, nb, nb_dist, motor, seen, gene_flag, ci, cf, stop):  
         if dirs == 0:
             conclude(i, tick, ri, motor, seen, gene_flag, ci, RESULT_RETURNED, stop)
             return
-        held = 0
-        for k in range(6):
-            held += (dirs >> k) & 1
-        if held >= HEMMED_NEIGHBOURS:
+        if hemmed(i, ri, nb, dirs):
             conclude(i, tick, ri, motor, seen, gene_flag, ci, RESULT_STUCK, stop)
             return
     collect(i, tick, ri, nb, nb_dist, seen, ci, cf)
@@ -410,23 +509,26 @@ def walk_rule(i, tick, ri, nb, nb_dist, motor, seen, gene_flag, ci, cf, stop):  
         motor[i] = STOP
         if tick - ri[i, R_WALK_SUB_SINCE] < ci[C_TICKS_SETTLE]:
             return
-        if at_site(i, ri[i, R_WALK_SUB_SINCE], ri, nb, nb_dist, cf):
-            conclude(i, tick, ri, motor, seen, gene_flag, ci, RESULT_RETURNED, stop)
+        where = back(i, ri[i, R_WALK_SUB_SINCE], ri, nb, nb_dist, cf)
+        if where == 1 or (where == 2 and ri[i, R_WALK_DOOR] == 1):
+            result = RESULT_RETURNED if where == 1 else RESULT_DOORSTEP
+            conclude(i, tick, ri, motor, seen, gene_flag, ci, result, stop)
             return
         ri[i, R_WALK] = WALK_OUT
         ri[i, R_WALK_SUB_SINCE] = tick
         phase = WALK_OUT
     if ri[i, R_WALK_GONE] == 0:
-        if far_from_site(i, tick, ri, nb, nb_dist, cf):
+        if gone(i, tick, ri, nb):
             ri[i, R_WALK_GONE] = 1
         elif tick - ri[i, R_WALK_SINCE] > STUCK_TICKS:
             conclude(i, tick, ri, motor, seen, gene_flag, ci, RESULT_STUCK, stop)
             return
-    elif tick - ri[i, R_WALK_SUB_SINCE] >= ci[C_TICKS_COOLDOWN] and at_site(
-        i, tick - ci[C_TICKS_MOVE_FRESH], ri, nb, nb_dist, cf
-    ):
-        motor[i] = STOP
-        ri[i, R_WALK] = WALK_SETTLE
-        ri[i, R_WALK_SUB_SINCE] = tick
-        return
+    elif tick - ri[i, R_WALK_SUB_SINCE] >= ci[C_TICKS_COOLDOWN]:
+        where = back(i, tick - ci[C_TICKS_MOVE_FRESH], ri, nb, nb_dist, cf)
+        if where > 0:
+            motor[i] = STOP
+            ri[i, R_WALK] = WALK_SETTLE
+            ri[i, R_WALK_SUB_SINCE] = tick
+            ri[i, R_WALK_DOOR] = 1 if where == 2 else 0
+            return
     orbit(i, tick, nb, nb_dist, motor, ci, cf)

@@ -90,7 +90,8 @@ R_WALK_SEEN = 55  # tick this robot last heard a walking Leader (it then also se
 R_WALK_TAGS = 56  # distinct tags the walker collected
 R_WALK_DIRS = 57  # bit k: a robot held the walker's neighbour site in direction k
 R_WALK_HEARD = 58  # tick the walker last heard any robot
-R_FIELDS = 59
+R_WALK_DOOR = 59  # 1: the walker is settling on the doorstep of its site, not on it
+R_FIELDS = 60
 
 PHASE_NORMAL = 0
 PHASE_ELECTING = 1
