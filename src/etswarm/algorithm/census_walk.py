@@ -8,34 +8,35 @@ robots on the remnant's periphery. Robots that hear a walking Leader's status me
 their own status (which carries their tag) every other message period for a while, so the
 walker hears tags and not only election messages.
 
-The walker knows it is back when, after having been well away from its site (a robot of
-a neighbouring site unheard for ``GONE_TICKS``: out of radio range; and likewise for the
-doorstep below), it localises onto its
-own tag as a searcher does on a site (paper Sec. 4.1): two robots of neighbouring sites at
-about d, every robot heard at the distance its site predicts, and every robot that held a
-neighbouring site when it left heard again (else the mirror site across two of them,
-outside the remnant, looks the same when the third is out of range). A site with five
-neighbours held is a one-wide pocket the walk passes but cannot re-enter: the walker may
-stop on its doorstep (the free site in front of it) instead and take that site. A site with only one
-neighbour left (the tip of a line) is recognised by that neighbour at about d and every
-other robot heard (there may be none) within twice the pair tolerance of its predicted
-distance; a Leader
-with no neighbour left is alone and counts itself without walking. It stops there, confirms
-with readings taken standing still, and maps the collected tags onto the current target's
-bitmap: the cells a lattice flood fill from the grid's border cannot reach without crossing
-a collected tag (its own included) form the closed area bounded by the remnant, and the
-1-cells of that area are the census count. A remnant with holes inside (robots removed in
-the middle) is over-counted: the walk never sees the holes (the paper's method).
+Coming back. The walker has left once a robot of one of its neighbouring sites (those
+held when it set out, R_WALK_DIRS) has been out of earshot for ``GONE_TICKS``. After that
+it is back when it localises onto its own tag as a searcher does on a site (paper Sec.
+4.1): two robots of neighbouring sites at about d, every robot heard at the distance its
+site predicts, and every robot of a neighbouring site heard again (else the mirror site
+across two of them looks the same when a third is out of range). It stops, confirms with
+readings taken standing still, and counts. Special sites:
 
-If the walk takes longer than ``census_walk_timeout_s``, or the walker hears nobody for
-``LOST_TICKS``, the count is made from what was collected so far and the Leader gives up
-its tag (it is not on its site), so the new target is grown without it as a seed. Two
-failures fall back to the spanning-tree count (the Leader's subtree count when it was
-declared; the tree is built by the election anyway): a Leader hemmed in (``hemmed``: next
-to a hole inside the remnant; it does not walk) or still near its site after
-``STUCK_TICKS``, and a walk whose ring
-of tags shuts in every free neighbour site of the Leader's own (it went round a hole, not
-round the outside). The event records which way the census ended.
+- the tip of a line (one neighbour): that neighbour at about d, and every other robot
+  heard (there may be none) within twice the pair tolerance of its predicted distance;
+- a one-wide pocket (five neighbours held): the walk passes its mouth but cannot get back
+  in, so the walker may stop on the doorstep (the free site in front of it) and take that
+  site as its own;
+- no neighbour: the Leader is alone and counts itself without walking.
+
+Counting. The collected tags (its own included) are mapped onto the current target's
+bitmap: the cells a lattice flood fill from the grid's border cannot reach without
+crossing a collected tag form the closed area bounded by the remnant, and the 1-cells of
+that area are the census count. A remnant with holes inside (robots removed in the middle)
+is over-counted: the walk never sees the holes (the paper's method).
+
+Failures. A walk longer than ``census_walk_timeout_s``, or a walker that hears nobody for
+``LOST_TICKS``, counts what was collected so far, and the Leader gives up its tag (it is
+not on its site), so the new target is grown without it as a seed. Three cases fall back
+to the spanning-tree count (the Leader's subtree count when it was declared; the election
+builds the tree anyway): a Leader hemmed in (``hemmed``: next to a hole inside the
+remnant; it does not walk), one still not gone after ``STUCK_TICKS``, and a walk whose ring
+of tags shuts in every free neighbouring site of the Leader's (it went round a hole, not
+round the outside). The census event records how the census ended (``RESULT_NAMES``).
 """
 
 from __future__ import annotations
