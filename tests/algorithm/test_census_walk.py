@@ -3,14 +3,19 @@ and end to end on a split triangle."""
 
 from __future__ import annotations
 
+import json
+
 import numpy as np
 import pytest
+from click.testing import CliRunner
 
+from etswarm.algorithm.api import run_experiment
 from etswarm.algorithm.census_walk import opens_outside, walk_count
 from etswarm.algorithm.et_controller import ETController
 from etswarm.algorithm.memory import R_TAG_X, R_TAG_Y
 from etswarm.algorithm.params import ETParams
 from etswarm.algorithm.run import ETRun, RunConfig
+from etswarm.cli.run_command import run as run_command
 from etswarm.errors import EtswarmError
 from etswarm.shapes.lattice import NEIGHBOUR_OFFSETS
 
@@ -77,6 +82,20 @@ def test_census_parameter_is_checked_and_reaches_the_kernel() -> None:
     assert RunConfig(shape="triangle").census == "tree"
     ctl = ETController(4, np.array([[0, 0], [1, 0], [1, 1]]), config.et, 31)
     assert ctl.walk_seen.shape == (4, *ctl.grid_shape)
+
+
+def test_census_is_a_run_parameter_and_a_cli_option() -> None:
+    assert run_experiment({"shape": "triangle", "census": "walk", "max_time_s": 2})[
+        "census"
+    ] == "walk"
+    assert "census" in run_experiment.parameters  # type: ignore[attr-defined]
+    result = CliRunner().invoke(
+        run_command, ["triangle", "--census", "walk", "--max-time", "2", "--json"]
+    )
+    assert result.exit_code == 0, result.output
+    assert json.loads(result.output)["census"] == "walk"
+    result = CliRunner().invoke(run_command, ["triangle", "--census", "count", "--json"])
+    assert result.exit_code != 0
 
 
 class WatchedRun(ETRun):
