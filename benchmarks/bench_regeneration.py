@@ -1,10 +1,17 @@
-"""Regeneration figures: per shape and damage, over seeds, how remnants fare.
+"""Regeneration figures: per shape, damage and census method, over seeds, how remnants fare.
 
     .venv/bin/python benchmarks/bench_regeneration.py [--seeds 10] [--max-time 14400]
+        [--census tree|walk|both] [--jobs 2] [--case "triangle:split x=0" ...]
 
-For each case: runs whose first formation completed, runs in which every remnant of at least
-three robots re-formed its scaled target, exact census, at most one Leader per remnant, runs
-with a tag held twice in a remnant, and the median time from damage to re-formed.
+A case is ``SHAPE:DAMAGE`` or ``SHAPE/N:DAMAGE`` (N robots forming scale(SHAPE, N), --fit).
+For each case and census method, one Markdown table row: runs whose first formation
+completed (only those count further), runs in which every remnant of at least three robots
+re-formed its scaled target (success), at most one Leader per remnant, runs with a tag held
+twice in a remnant, the median time from damage to re-formed; then the census itself over
+all censuses taken (one per remnant that elected a Leader): exact ones, error (count minus
+the remnant's robots at the census; mean and max |error|), mean time from Leader to count
+and from the election's start to count (simulated s), and how the censuses ended (tree;
+walks: returned, enclosed, stuck, timeout, lost).
 """
 
 from __future__ import annotations
@@ -12,6 +19,9 @@ from __future__ import annotations
 import argparse
 import os
 import statistics
+from collections import Counter
+from concurrent.futures import ProcessPoolExecutor
+from typing import Any
 
 from etswarm.algorithm.run import ETRun, RunConfig
 
@@ -24,34 +34,102 @@ CASES = (
 )
 
 
+def one_run(args: tuple[str, str, str, int, float]) -> dict[str, Any]:
+    """Run one case with one seed and census method; return its JSON summary."""
+    shape, damage, census, seed, max_time = args
+    name, _, robots = shape.partition("/")
+    config = RunConfig(
+        shape=name,
+        robots=int(robots) if robots else None,
+        fit=bool(robots),
+        seed=seed,
+        max_time_s=max_time,
+        damage=(damage,),
+        census=census,
+    )
+    return ETRun(config).run()
+
+
+HEADER = (
+    "| shape | damage | census | formed | reformed | <=1 leader | shared tag | median "
+    "re-formation min | censuses | exact | error mean | max abs error | s leader->count | "
+    "s election->count | ends |\n" + "|---" * 15 + "|"
+)
+
+
+def report(shape: str, damage: str, census: str, seeds: int, runs: list[dict[str, Any]]) -> str:
+    """One table row for the summaries ``runs`` of a case and census method."""
+    formed = reformed = leaders = dups = 0
+    times: list[float] = []
+    errors: list[int] = []
+    after_leader: list[float] = []
+    after_election: list[float] = []
+    results: Counter[str] = Counter()
+    for s in runs:
+        if not s["formed"]:
+            continue
+        formed += 1
+        comps = [c for c in s["components"] if c["robots"] >= 3]
+        reformed += all(c["formed"] for c in comps)
+        leaders += s["max_leaders_per_component"] <= 1
+        dups += bool(s["duplicate_tags"])
+        times += [c["time_to_stable_s"] / 60 for c in comps if c["formed"]]
+        for e in s["events"]:
+            if e["kind"] != "census":
+                continue
+            errors.append(e["count"] - e["robots"])
+            after_leader.append(e["duration_s"])
+            after_election.append(e["since_election_s"])
+            results[e["result"]] += 1
+
+    def mean(values: list[float] | list[int]) -> str:
+        return f"{statistics.fmean(values):+.2f}" if values else "-"
+
+    def avg(values: list[float]) -> str:
+        return f"{statistics.fmean(values):.0f}" if values else "-"
+
+    median = f"{statistics.median(times):.1f}" if times else "-"
+    max_abs = max((abs(e) for e in errors), default=0) if errors else "-"
+    exact_censuses = sum(e == 0 for e in errors)
+    ends = ", ".join(f"{k} {v}" for k, v in sorted(results.items()))
+    return (
+        f"| {shape} | {damage} | {census} | {formed}/{seeds} | {reformed}/{formed} | "
+        f"{leaders}/{formed} | {dups} | {median} | {len(errors)} | "
+        f"{exact_censuses}/{len(errors)} | {mean(errors)} | {max_abs} | {avg(after_leader)} | "
+        f"{avg(after_election)} | {ends} |"
+    )
+
+
+def parse_case(text: str) -> tuple[str, str]:
+    """``SHAPE:DAMAGE`` -> (shape, damage)."""
+    shape, _, damage = text.partition(":")
+    if not damage:
+        raise argparse.ArgumentTypeError(f"--case {text!r}: expected SHAPE:DAMAGE")
+    return shape, damage
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__)
     parser.add_argument("--seeds", type=int, default=10)
+    parser.add_argument("--first-seed", type=int, default=0)
     parser.add_argument("--max-time", type=float, default=4 * 3600.0)
+    parser.add_argument("--census", choices=("tree", "walk", "both"), default="both")
+    parser.add_argument("--jobs", type=int, default=1, help="Processes running seeds.")
+    parser.add_argument(
+        "--case", type=parse_case, action="append", default=None, metavar="SHAPE:DAMAGE"
+    )
     args = parser.parse_args()
+    methods = ("tree", "walk") if args.census == "both" else (args.census,)
+    cases = args.case or list(CASES)
     print(f"load average {os.getloadavg()}")
-    for shape, damage in CASES:
-        formed = reformed = census = leaders = dups = 0
-        times: list[float] = []
-        for seed in range(args.seeds):
-            config = RunConfig(shape=shape, seed=seed, max_time_s=args.max_time, damage=(damage,))
-            s = ETRun(config).run()
-            if not s["formed"]:
-                continue
-            formed += 1
-            comps = [c for c in s["components"] if c["robots"] >= 3]
-            reformed += all(c["formed"] for c in comps)
-            census += all(c["census_count"] == c["robots"] for c in comps)
-            leaders += s["max_leaders_per_component"] <= 1
-            dups += bool(s["duplicate_tags"])
-            times += [c["time_to_stable_s"] / 60 for c in comps if c["formed"]]
-        median = f"{statistics.median(times):.1f} min" if times else "-"
-        print(
-            f"{shape:9s} {damage:18s} formed {formed}/{args.seeds}, all remnants reformed "
-            f"{reformed}/{formed}, census exact {census}/{formed}, <=1 leader {leaders}/{formed}, "
-            f"runs with a shared tag {dups}, median re-formation {median}",
-            flush=True,
-        )
+    print(HEADER)
+    seeds = range(args.first_seed, args.first_seed + args.seeds)
+    with ProcessPoolExecutor(max_workers=args.jobs) as pool:
+        for shape, damage in cases:
+            for census in methods:
+                work = [(shape, damage, census, seed, args.max_time) for seed in seeds]
+                runs = list(pool.map(one_run, work))
+                print(report(shape, damage, census, args.seeds, runs), flush=True)
 
 
 if __name__ == "__main__":

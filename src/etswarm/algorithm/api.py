@@ -19,6 +19,7 @@ RUN_KEYS = (
     "layout",
     "fit",
     "damage",
+    "census",
 )
 
 
@@ -26,8 +27,8 @@ def run_experiment(params: dict[str, Any]) -> dict[str, Any]:
     """Run one ET experiment described by ``params`` and return its JSON summary.
 
     ``params`` holds RunConfig fields (``RUN_KEYS``; ``damage`` is one spec or a list) and
-    optional ET parameters prefixed with ``et_`` (e.g. ``et_release_interval_s``). Unknown
-    keys are an error.
+    optional ET parameters prefixed with ``et_`` (e.g. ``et_release_interval_s``);
+    ``census`` is ``"tree"`` or ``"walk"``. Unknown keys are an error.
     """
     run_kwargs: dict[str, Any] = {}
     et_kwargs: dict[str, Any] = {}

@@ -16,8 +16,10 @@ from __future__ import annotations
 
 from numba import njit
 
+from etswarm.algorithm.census_walk import sends_tag, walk_rule, walking
 from etswarm.algorithm.kernel_util import (
     INACTIVE,
+    LEADER,
     QUEUED,
     SEARCH,
     STABLE,
@@ -62,6 +64,8 @@ from etswarm.algorithm.memory import (
     R_TAG_Y,
     R_TS,
     R_TSLOT,
+    R_WALK,
+    R_WALK_SEEN,
     SLOT_LIMIT,
 )
 from etswarm.algorithm.messages import EPOCH_SHIFT, KIND_MASK, MSG_ELECT, MSG_STATUS, MSG_TARGET
@@ -73,7 +77,7 @@ from etswarm.algorithm.regeneration import (
     TARGET_RELAY_TICKS,
     announcement_rule,
     election_rule,
-    start_election,
+    join_election,
 )
 from etswarm.algorithm.release import queued_rule
 from etswarm.algorithm.search import search_rule
@@ -168,12 +172,13 @@ def ingest(i, k, tick, ri, in_type, in_data, in_dist, nb, nb_dist):  # type: ign
 @njit
 def encode(i, tick, ri, out_on, out_type, out_data):  # type: ignore[no-untyped-def]
     """Write robot i's next broadcast (layouts in ``messages``): its election message while
-    electing; for a while after adopting a scaled target, every other period its
-    announcement; otherwise its status."""
+    electing (every other period its status instead while census walking, see
+    ``census_walk.sends_tag``); for a while after adopting a scaled target, every other
+    period its announcement; otherwise its status."""
     out_on[i] = True
     out_data[i, 0] = i & 0xFF
     out_data[i, 1] = (i >> 8) & 0xFF
-    if ri[i, R_PHASE] == PHASE_ELECTING:
+    if ri[i, R_PHASE] == PHASE_ELECTING and not ((tick // 15) % 2 and sends_tag(i, tick, ri)):
         epoch = ri[i, R_EPOCH] + 1
         out_type[i] = MSG_ELECT | ((epoch & 31) << EPOCH_SHIFT)
         out_data[i, 2] = ri[i, R_LEADER] & 0xFF
@@ -233,7 +238,7 @@ def et_step(  # type: ignore[no-untyped-def]
     rng,
 ):
     """One control tick for every robot (simulator fast-path contract)."""
-    stop, ri, nb, nb_dist, gene_flag, gene_nn, slot_info, ci, cf = mem
+    stop, ri, nb, nb_dist, gene_flag, gene_nn, slot_info, ci, cf, walk_seen = mem
     n = ri.shape[0]
     every = ci[C_EVAL_EVERY]
     for i in range(n):
@@ -245,18 +250,25 @@ def et_step(  # type: ignore[no-untyped-def]
             kind = ingest(i, k, tick, ri, in_type, in_data, in_dist, nb, nb_dist)
             if kind == MSG_STATUS:
                 new_msgs = True
+                if int(in_data[i, k, 2]) & 0x0F == LEADER:
+                    ri[i, R_WALK_SEEN] = tick  # a census walker: send it our tag
             elif kind == MSG_ELECT:
                 election_heard = True
         if election_heard and ri[i, R_PHASE] == PHASE_NORMAL:
             for m in range(nb.shape[1]):
                 if nb[i, m, NB_ID] >= 0 and nb[i, m, NB_EEPOCH] == ri[i, R_EPOCH] + 1:
                     # Another robot of this remnant is electing: join in.
-                    start_election(i, tick, ri)
+                    join_election(i, tick, ri, ci)
                     motor[i] = STOP
                     break
         state = ri[i, R_STATE]
         slot = ri[i, R_TSLOT]
         due = (tick + i) % every == 0
+        if ri[i, R_PHASE] == PHASE_ELECTING and walking(ri[i, R_WALK]):
+            walk_rule(i, tick, ri, nb, nb_dist, motor, walk_seen, gene_flag[slot], ci, cf, stop)
+            led[i] = ri[i, R_STATE]
+            encode(i, tick, ri, out_on, out_type, out_data)
+            continue
         if ri[i, R_PHASE] == PHASE_ELECTING:
             motor[i] = STOP
             if not due:

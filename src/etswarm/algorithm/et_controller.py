@@ -30,6 +30,7 @@ from etswarm.algorithm.memory import (
     R_TAG_X,
     R_TAG_Y,
     R_TS,
+    R_WALK,
     SLOT_FIELDS,
     allocate,
 )
@@ -69,6 +70,10 @@ class ETController:
         self.slot_info = np.zeros((INITIAL_SLOTS, SLOT_FIELDS), dtype=np.int64)
         self.slot_cells: list[np.ndarray] = []
         self.ci, self.cf = et.pack(ticks_per_s, self.x0, self.y0, diameter_hops=int(span.sum()))
+        # Each robot's bitmap of the tags it collected on a census walk (only Leaders use
+        # it; a placeholder when the census is by spanning tree).
+        walk_grid = self.grid_shape if et.census == "walk" else (1, 1)
+        self.walk_seen = np.zeros((n_robots, *walk_grid), dtype=np.uint8)
         self.add_target(target, release_limit=max(0, len(target) - 3), tx=0, ty=0)
 
     # -- targets -----------------------------------------------------------------------
@@ -117,6 +122,7 @@ class ETController:
             self.slot_info,
             self.ci,
             self.cf,
+            self.walk_seen,
         )
 
     def seed(self, layout: Layout) -> None:
@@ -149,9 +155,12 @@ class ETController:
         return np.flatnonzero(self.ri[:, R_REQUEST] == 1)
 
     def known_tags(self, i: int, since_tick: int) -> set[tuple[int, int]]:
-        """Tags robot ``i`` knows to be held: its own and those of the placed robots in its
-        table heard since ``since_tick``."""
+        """Tags robot ``i`` knows to be held: its own, those of the placed robots in its
+        table heard since ``since_tick``, and those it collected on a census walk."""
         known = {(int(self.ri[i, R_TAG_X]), int(self.ri[i, R_TAG_Y]))}
+        if self.walk_seen.shape[1:] == self.grid_shape and self.ri[i, R_WALK] != 0:
+            gx, gy = np.nonzero(self.walk_seen[i])
+            known.update(zip((gx + self.x0).tolist(), (gy + self.y0).tolist(), strict=True))
         for row in self.nb[i]:
             if row[NB_ID] >= 0 and row[NB_STATE] >= State.INACTIVE and row[NB_LAST] >= since_tick:
                 known.add((int(row[NB_TX]), int(row[NB_TY])))

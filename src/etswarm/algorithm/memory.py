@@ -5,7 +5,7 @@ A robot's memory is one row of ``ri`` (int64 fields) plus its neighbour table, o
 memory only; the controller never reads another robot's row.
 
 ``mem`` passed to the simulator is the tuple
-``(stop, ri, nb, nb_dist, gene_flag, gene_nn, slot_info, ci, cf)``:
+``(stop, ri, nb, nb_dist, gene_flag, gene_nn, slot_info, ci, cf, walk_seen)``:
 
 - ``stop``       (1,) int64: nonzero asks the simulator to end the chunk (host work needed)
 - ``ri``         (N, R_FIELDS) int64: the fields ``R_*`` below
@@ -18,6 +18,8 @@ memory only; the controller never reads another robot's row.
   translation; a robot that hears of a scaled target (n, tx, ty) finds its slot here (the
   slots memoise ``scale``, which every robot could compute on board from n alone)
 - ``ci``, ``cf``: packed constants (see ``params``)
+- ``walk_seen``  (N, GX, GY) uint8: per robot, the tags it collected walking round its
+  remnant as Leader (census ``walk``; grid as the genes'); (N, 1, 1) when census ``tree``
 """
 
 from __future__ import annotations
@@ -76,7 +78,20 @@ R_PEND_EPOCH = 44  # newest target announcement heard: epoch (-1: none), n, tx, 
 R_PEND_N = 45
 R_PEND_TX = 46
 R_PEND_TY = 47
-R_FIELDS = 48
+# Census by periphery walk (``census_walk``).
+R_CANDIDATE = 48  # 1: stands for Leader itself (census walk: only robots that saw damage)
+R_WALK = 49  # WALK_* phase of the Leader's walk round the remnant
+R_WALK_SINCE = 50  # tick the walk began
+R_WALK_SUB_SINCE = 51  # tick the current walk phase began
+R_WALK_GONE = 52  # 1 once the walker has been well away from its own site
+R_WALK_END = 53  # tick the census was concluded (walk or tree)
+R_WALK_RESULT = 54  # WALK_RESULT_*: how the walk ended
+R_WALK_SEEN = 55  # tick this robot last heard a walking Leader (it then also sends its tag)
+R_WALK_TAGS = 56  # distinct tags the walker collected
+R_WALK_DIRS = 57  # bit k: a robot held the walker's neighbour site in direction k
+R_WALK_HEARD = 58  # tick the walker last heard any robot
+R_WALK_DOOR = 59  # 1: the walker is settling on the doorstep of its site, not on it
+R_FIELDS = 60
 
 PHASE_NORMAL = 0
 PHASE_ELECTING = 1
@@ -130,6 +145,8 @@ def allocate(n_robots: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     ri[:, R_YLD_ID] = -1
     ri[:, R_PARENT] = -1
     ri[:, R_PEND_EPOCH] = -1
+    ri[:, R_CANDIDATE] = 1
+    ri[:, R_WALK_SEEN] = -(1 << 40)
     nb = np.zeros((n_robots, NB_SLOTS, NB_FIELDS), dtype=np.int64)
     nb[:, :, NB_ID] = -1
     nb[:, :, NB_PREV] = -1

@@ -26,7 +26,9 @@ C_GENE_Y0 = 10  # tag Y of gene grid row 0
 C_EVAL_EVERY = 11  # placed robots re-evaluate their state every this many ticks
 C_TICKS_CLEAR = 12  # a Queued robot leaves only after hearing no searcher this long
 C_TICKS_REGEN_QUIET = 13  # election/census quiet time before a robot declares itself Leader
-N_CI = 14
+C_CENSUS_WALK = 14  # 1: the Leader counts by walking round the remnant; 0: spanning tree
+C_TICKS_WALK_MAX = 15  # the census walk gives up after this long
+N_CI = 16
 
 F_SPACING = 0  # lattice spacing d
 F_PAIR_TOL = 1  # two references within this of d trigger a site candidate
@@ -36,7 +38,11 @@ F_FOLLOW_OFFSET = 4  # edge-following aims at d + this (clearance for the bodies
 F_CLOSING = 5  # assumed worst-case closing speed between readings, mm per tick
 F_CLEARANCE = 6  # a searcher turns away from any other robot nearer than this
 F_BALANCE_TOL = 7  # the two references' distances may differ by at most this
-N_CF = 8
+F_WALK_COLLECT = 8  # the census walker records the tags of robots heard nearer than this
+N_CF = 9
+
+#: Census methods (``ETParams.census``): the paper's periphery walk, or a spanning tree.
+CENSUS_METHODS = ("tree", "walk")
 
 
 #: Parameters that may be zero (all others must be positive).
@@ -69,11 +75,19 @@ class ETParams:
     #: Per hop of the shape's diameter: the election waits this long without change.
     election_quiet_per_hop_s: float = 1.5
     election_quiet_min_s: float = 20.0
+    #: How the Leader counts its remnant: "tree" (convergecast) or "walk" (the paper's walk
+    #: round the periphery, counting the bitmap's 1s inside the tags it collected).
+    census: str = "tree"
+    census_walk_timeout_s: float = 1200.0
+    census_collect_mm: float = 60.0
 
     def __post_init__(self) -> None:
         for f in fields(self):
             value = getattr(self, f.name)
-            if f.name in NON_NEGATIVE:
+            if f.name == "census":
+                if value not in CENSUS_METHODS:
+                    raise EtswarmError(f"census must be one of {CENSUS_METHODS}, got {value!r}")
+            elif f.name in NON_NEGATIVE:
                 if not value >= 0:
                     raise EtswarmError(f"ET parameter {f.name} must be >= 0, got {value}")
             elif not value > 0:
@@ -113,6 +127,8 @@ class ETParams:
         ci[C_TICKS_REGEN_QUIET] = ticks(
             max(self.election_quiet_min_s, self.election_quiet_per_hop_s * diameter_hops)
         )
+        ci[C_CENSUS_WALK] = 1 if self.census == "walk" else 0
+        ci[C_TICKS_WALK_MAX] = ticks(self.census_walk_timeout_s)
         cf = np.zeros(N_CF, dtype=np.float64)
         cf[F_SPACING] = self.spacing_mm
         cf[F_PAIR_TOL] = self.pair_tol_mm
@@ -122,4 +138,5 @@ class ETParams:
         cf[F_CLOSING] = self.closing_speed_mm_s / ticks_per_s
         cf[F_CLEARANCE] = self.clearance_mm
         cf[F_BALANCE_TOL] = self.balance_tol_mm
+        cf[F_WALK_COLLECT] = self.census_collect_mm
         return ci, cf

@@ -4,10 +4,18 @@ A Stable robot whose neighbour count stays below NN turns Danger and starts an e
 for the next *epoch*; every robot of the remnant that hears it joins (and stops). The
 election floods the lowest ID together with a hop count, which also builds a spanning
 tree (each robot's parent is a neighbour one hop nearer the lowest ID); subtree sizes flow
-back up the tree (convergecast), so when nothing has changed for the quiet time the robot
-with the lowest ID knows it is the Leader and how many robots the remnant has (census
-``tree``). It then asks for ``scale(bitmap, n)`` placed where it keeps the most robots it
-knows of in place (the host computes it: ``R_REQUEST``), adopts it and announces
+back up the tree (convergecast). When nothing has changed for the quiet time, the robot
+with the lowest ID knows it is the Leader. How it then counts the remnant is the census
+method (``ETParams.census``, packed as ``C_CENSUS_WALK``):
+
+- ``tree``: the Leader's subtree count is the census, at once.
+- ``walk`` (the paper's): only robots that saw the damage themselves stand (the others
+  join with no candidate, ``NO_LEADER``), so the Leader sits on the damaged edge. It walks
+  round the remnant collecting the tags of the robots on its periphery, comes back onto
+  its site and counts the bitmap's 1-cells in the area those tags bound (``census_walk``).
+
+With its count n the Leader asks for ``scale(bitmap, n)`` placed where it keeps the most
+robots it knows of in place (the host computes it: ``R_REQUEST``), adopts it and announces
 (epoch, n, tx, ty); every robot adopts the announcement and relays it. Robots whose tag is
 in the new shape stay (the Leader Active with TS 1, the others Inactive with TS 2); the
 rest become Queued and join again through Search.
@@ -17,6 +25,7 @@ from __future__ import annotations
 
 from numba import njit
 
+from etswarm.algorithm.census_walk import RESULT_NONE, RESULT_TREE, WALK_NONE, WALK_START
 from etswarm.algorithm.kernel_util import (
     ACTIVE,
     DANGER,
@@ -39,6 +48,7 @@ from etswarm.algorithm.memory import (
     R_ADOPTED_AT,
     R_BELOW_SINCE,
     R_BEST_SINCE,
+    R_CANDIDATE,
     R_CENSUS,
     R_COUNT,
     R_COUNT_SINCE,
@@ -67,15 +77,20 @@ from etswarm.algorithm.memory import (
     R_TAG_Y,
     R_TS,
     R_TSLOT,
+    R_WALK,
+    R_WALK_END,
+    R_WALK_RESULT,
     SLOT_N,
     SLOT_TX,
     SLOT_TY,
     SLOT_USED,
 )
-from etswarm.algorithm.params import C_TICKS_NB_FRESH, C_TICKS_REGEN_QUIET
+from etswarm.algorithm.params import C_CENSUS_WALK, C_TICKS_NB_FRESH, C_TICKS_REGEN_QUIET
 
 #: Ticks a robot keeps relaying a newly adopted target (alternating with its status).
 TARGET_RELAY_TICKS = 31 * 40
+#: Leader field of a robot that has heard of no candidate yet (census walk).
+NO_LEADER = 0xFFFF
 
 
 @njit
@@ -90,15 +105,31 @@ def start_election(i, tick, ri):  # type: ignore[no-untyped-def]
     ri[i, R_BEST_SINCE] = tick
     ri[i, R_COUNT_SINCE] = tick
     ri[i, R_REQUEST] = 0
+    ri[i, R_CANDIDATE] = 1
+    ri[i, R_WALK] = WALK_NONE
+    ri[i, R_WALK_RESULT] = RESULT_NONE
+    ri[i, R_WALK_END] = -1
     set_state(i, ri, DANGER, tick)
 
 
 @njit
+def join_election(i, tick, ri, ci):  # type: ignore[no-untyped-def]
+    """Robot i joins an election it heard of. With census ``walk`` only robots that saw
+    the damage themselves stand (paper: the Danger robots elect their Leader), so the
+    Leader sits on the damaged edge, from where it can walk out; the others relay."""
+    start_election(i, tick, ri)
+    if ci[C_CENSUS_WALK] == 1:
+        ri[i, R_CANDIDATE] = 0
+        ri[i, R_LEADER] = NO_LEADER
+
+
+@njit
 def election_rule(i, tick, ri, nb, ci, stop):  # type: ignore[no-untyped-def]
-    """Min-ID flooding with hop counts and subtree counts; the quiet Leader asks for n."""
+    """Min-ID flooding with hop counts and subtree counts; the quiet Leader asks for n
+    (census ``tree``) or starts its walk round the remnant (census ``walk``)."""
     epoch = ri[i, R_EPOCH] + 1
     fresh = ci[C_TICKS_NB_FRESH]
-    best_leader = i
+    best_leader = i if ri[i, R_CANDIDATE] == 1 else NO_LEADER
     best_hop = 0
     parent = -1
     slots = nb.shape[1]
@@ -140,13 +171,20 @@ def election_rule(i, tick, ri, nb, ci, stop):  # type: ignore[no-untyped-def]
         ri[i, R_REQUEST] = 0
         return
     quiet = ci[C_TICKS_REGEN_QUIET]
-    if ri[i, R_REQUEST] == 0 and (
-        tick - ri[i, R_ELECT_SINCE] >= quiet
+    if (
+        ri[i, R_REQUEST] == 0
+        and ri[i, R_WALK] == WALK_NONE
+        and tick - ri[i, R_ELECT_SINCE] >= quiet
         and tick - ri[i, R_BEST_SINCE] >= quiet
         and tick - ri[i, R_COUNT_SINCE] >= quiet
     ):
         set_state(i, ri, LEADER, tick)
+        if ci[C_CENSUS_WALK] == 1:
+            ri[i, R_WALK] = WALK_START  # census_walk.walk_rule takes over
+            return
         ri[i, R_CENSUS] = sub
+        ri[i, R_WALK_END] = tick
+        ri[i, R_WALK_RESULT] = RESULT_TREE
         ri[i, R_REQUEST] = 1
         stop[0] = 1
 
@@ -176,6 +214,7 @@ def adopt_target(i, tick, ri, nb, slot, epoch, leader, gene_flag, gene_nn, slot_
     ri[i, R_TSLOT] = slot
     ri[i, R_PHASE] = PHASE_NORMAL
     ri[i, R_REQUEST] = 0
+    ri[i, R_WALK] = WALK_NONE
     ri[i, R_ADOPTED_AT] = tick
     ri[i, R_PEND_EPOCH] = epoch
     ri[i, R_PEND_N] = slot_info[slot, SLOT_N]

@@ -8,19 +8,24 @@ JSON summary of ``etswarm run --json``.
 from __future__ import annotations
 
 import time
-from dataclasses import asdict, dataclass, field
+from dataclasses import asdict, dataclass, field, replace
 from typing import Any
 
 import numpy as np
 
+from etswarm.algorithm.census_walk import RESULT_NAMES
 from etswarm.algorithm.et_controller import ETController
 from etswarm.algorithm.layout import plan_layout
 from etswarm.algorithm.memory import (
     R_CENSUS,
     R_ELECT_SINCE,
+    R_SINCE,
     R_TAG_X,
     R_TAG_Y,
     R_TSLOT,
+    R_WALK_END,
+    R_WALK_RESULT,
+    R_WALK_TAGS,
 )
 from etswarm.algorithm.params import ETParams
 from etswarm.algorithm.states import PLACED_STATES, STATE_NAMES, State
@@ -58,8 +63,15 @@ class RunConfig:
     fit: bool = False
     damage: tuple[str, ...] = ()
     et: ETParams = field(default_factory=ETParams)
+    #: Census method ("tree" or "walk"); None: the one in ``et``. Given, it replaces
+    #: ``et.census``; after construction it always names the method in use.
+    census: str | None = None
 
     def __post_init__(self) -> None:
+        if self.census is None:
+            object.__setattr__(self, "census", self.et.census)
+        elif self.census != self.et.census:
+            object.__setattr__(self, "et", replace(self.et, census=self.census))
         if not 0.0 <= self.loss < 1.0:
             raise EtswarmError(f"--loss must be in [0, 1), got {self.loss}")
         if self.noise_mm < 0:
@@ -122,7 +134,7 @@ class ETRun:
         self.settled_at_s: float | None = None
         self.last_damage_s: float | None = None
         self.reformed_at: dict[int, float] = {}
-        self.census: dict[int, dict[str, int]] = {}
+        self.census: dict[int, dict[str, Any]] = {}
         self._detected_for: float | None = -1.0
         self.wall_s = 0.0
         #: Optional :class:`etswarm.sim.recorder.Recorder`, fed at every measure check.
@@ -191,15 +203,39 @@ class ETRun:
     def _answer_requests(self) -> None:
         """Host side of a Leader's on-board ``scale(bitmap, n)`` and placement choice."""
         ctl = self.controller
+        tps = self.ticks_per_s
         for leader in ctl.pending_requests():
-            n = int(ctl.ri[leader, R_CENSUS])
+            row = ctl.ri[leader]
+            n = int(row[R_CENSUS])
             cells, tx, ty = self._scaled_placement(int(leader), n)
             slot = ctl.answer(int(leader), cells, n, tx, ty)
             group = self._group_of(int(leader))
-            self._event("leader", robot=int(leader))
-            self.census[slot] = {"leader": int(leader), "count": n, "robots": len(group)}
-            self._event("census", leader=int(leader), count=n, robots=len(group), slot=slot)
+            # The robot's clock: election began, Leader declared, census concluded.
+            elected_s = int(row[R_SINCE]) / tps
+            done_s = int(row[R_WALK_END]) / tps
+            self._event_at(elected_s, "leader", robot=int(leader))
+            census = {
+                "leader": int(leader),
+                "count": n,
+                "robots": len(group),
+                "method": self.config.census,
+                "result": RESULT_NAMES[int(row[R_WALK_RESULT])],
+                "duration_s": round(done_s - elected_s, 3),
+                "since_election_s": round(done_s - int(row[R_ELECT_SINCE]) / tps, 3),
+            }
+            if self.config.census == "walk":
+                census["tags"] = int(row[R_WALK_TAGS])
+            self.census[slot] = census
+            self._event("census", **census, slot=slot)
         ctl.stop[0] = 0
+
+    def _event_at(self, t_s: float, kind: str, **fields: Any) -> None:
+        """Record an event that happened at ``t_s`` (in time order among the events)."""
+        event = {"t_s": round(t_s, 3), "kind": kind, **fields}
+        at = len(self.events)
+        while at > 0 and self.events[at - 1]["t_s"] > event["t_s"]:
+            at -= 1
+        self.events.insert(at, event)
 
     def _scaled_placement(self, leader: int, n: int) -> tuple[np.ndarray, int, int]:
         """scale(bitmap, n), translated so that it holds the Leader's site and two sites of
@@ -361,6 +397,7 @@ class ETRun:
             "loss": self.config.loss,
             "noise_mm": self.config.noise_mm,
             "layout": self.config.layout,
+            "census": self.config.census,
             "damage": list(self.config.damage),
             "formed": self.formed_at_s is not None,
             "formation_time_s": self.formed_at_s,

@@ -22,6 +22,9 @@ from etswarm.algorithm.layout import LAYOUTS
               help="Repository: the paper's queue, or a packed cluster.")
 @click.option("--release-interval", type=float, default=None,
               help="Seconds between releases from the repository.")
+@click.option("--census", type=click.Choice(("tree", "walk")), default="tree", show_default=True,
+              help="How a remnant's Leader counts it: spanning tree, or the paper's walk "
+                   "round the periphery.")
 @click.option("--fit", is_flag=True, help="With fewer robots than cells, form scale(shape, N).")
 @click.option("--damage", "damage", multiple=True, metavar="SPEC",
               help="Damage 'KIND REGION [at=TIME]', e.g. 'split x=0' (repeatable).")
@@ -36,7 +39,8 @@ from etswarm.algorithm.layout import LAYOUTS
               help="Save PNGs at the start and at each event (into --out or ./snapshots).")
 @click.option("--json", "as_json", is_flag=True, help="Print only the JSON summary.")
 def run(shape: str, robots: int | None, seed: int, loss: float, noise: float, max_time: float,
-        layout: str, release_interval: float | None, fit: bool, damage: tuple[str, ...],
+        layout: str, release_interval: float | None, census: str, fit: bool,
+        damage: tuple[str, ...],
         out: Path | None, video: Path | None, fps: float, speedup: float, snapshots: bool,
         as_json: bool) -> None:
     """Grow SHAPE (a library name or a bitmap file) with the ET algorithm."""
@@ -51,7 +55,8 @@ def run(shape: str, robots: int | None, seed: int, loss: float, noise: float, ma
         raise EtswarmError(f"--video {video}: the file must end in .mp4 or .gif")
     et = ETParams() if release_interval is None else ETParams(release_interval_s=release_interval)
     config = RunConfig(shape=shape, robots=robots, seed=seed, loss=loss, noise_mm=noise,
-                       max_time_s=max_time, layout=layout, fit=fit, damage=damage, et=et)
+                       max_time_s=max_time, layout=layout, fit=fit, damage=damage, et=et,
+                       census=census)
     et_run = ETRun(config)
     for note in et_run.notes:
         click.echo(f"etswarm: {note}", err=True)

@@ -147,9 +147,11 @@ def describe(summary: dict[str, Any]) -> list[str]:
         "states: " + ", ".join(f"{k} {v}" for k, v in summary["states"].items() if v),
     ]
     if summary["damage"]:
+        method = summary.get("census", "tree")
         for k, comp in enumerate(summary["components"]):
             lines.append(
-                f"remnant {k}: {comp['robots']} robots, census {comp['census_count']}, "
+                f"remnant {k}: {comp['robots']} robots, census {comp['census_count']} "
+                f"({method}), "
                 f"target {comp['target_cells']} cells, "
                 f"{'reformed' if comp['formed'] else 'not reformed'}"
                 + (
