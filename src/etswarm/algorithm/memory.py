@@ -91,7 +91,8 @@ R_WALK_TAGS = 56  # distinct tags the walker collected
 R_WALK_DIRS = 57  # bit k: a robot held the walker's neighbour site in direction k
 R_WALK_HEARD = 58  # tick the walker last heard any robot
 R_WALK_DOOR = 59  # 1: the walker is settling on the doorstep of its site, not on it
-R_FIELDS = 60
+R_LOST_SINCE = 60  # 1 + tick a searcher last lost every stationary robot (0: not lost)
+R_FIELDS = 61
 
 PHASE_NORMAL = 0
 PHASE_ELECTING = 1

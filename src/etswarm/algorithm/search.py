@@ -9,6 +9,7 @@ from etswarm.algorithm.kernel_util import (
     DIR_X,
     DIR_Y,
     FAR,
+    FORWARD,
     INACTIVE,
     LEFT,
     RIGHT,
@@ -34,6 +35,7 @@ from etswarm.algorithm.memory import (
     R_COOLDOWN,
     R_COUNT,
     R_HAS_TAG,
+    R_LOST_SINCE,
     R_NN,
     R_REF_ID,
     R_SUB,
@@ -67,6 +69,12 @@ from etswarm.algorithm.params import (
 SEARCHER_FRESH_TICKS = 31
 #: A free site must keep this many consecutive free neighbour sites to stay reachable.
 OPENING_SITES = 3
+#: A lost searcher first pivots where it lost the group for this long (ticks) ...
+LOST_PIVOT_TICKS = 310
+#: ... then spirals outwards: in every period of this many ticks it drives forward for a
+#: growing share (from 20 % to 90 % over ``SPIRAL_GROW_TICKS``) and pivots right for the rest.
+SPIRAL_PERIOD_TICKS = 124
+SPIRAL_GROW_TICKS = 18600
 
 
 @njit
@@ -272,6 +280,11 @@ def search_rule(i, tick, new_msgs, ri, nb, nb_dist, motor, gene_flag, gene_nn, c
         nearest = FAR
         obstacle = nearest_searcher
 
+    if not lost:
+        ri[i, R_LOST_SINCE] = 0
+    elif ri[i, R_LOST_SINCE] == 0:
+        ri[i, R_LOST_SINCE] = tick + 1
+
     if ri[i, R_SUB] == SUB_SETTLE:
         motor[i] = STOP
         if tick - ri[i, R_SUB_SINCE] < ci[C_TICKS_SETTLE]:
@@ -328,12 +341,29 @@ def search_rule(i, tick, new_msgs, ri, nb, nb_dist, motor, gene_flag, gene_nn, c
     if obstacle < clearance or nearest < clearance:
         motor[i] = LEFT
     elif lost:
-        # Pivot on the spot (within a body length of where the group was last heard).
-        motor[i] = RIGHT
+        motor[i] = lost_motion(tick, ri[i, R_LOST_SINCE] - 1)
     elif reading < aim:
         motor[i] = LEFT
     else:
         motor[i] = RIGHT
+
+
+@njit
+def lost_motion(tick, since):  # type: ignore[no-untyped-def]
+    """Motor command of a searcher that has heard no stationary robot since tick ``since``.
+
+    It first pivots right where it lost the group (which usually finds it again within a
+    body length); then it drives an outward spiral, forward for a share of every period
+    that grows with time, so the circles widen until a robot of the group is in earshot.
+    """
+    lost_for = tick - since
+    if lost_for < LOST_PIVOT_TICKS:
+        return RIGHT
+    spiral = lost_for - LOST_PIVOT_TICKS
+    share = 0.2 + 0.7 * min(1.0, spiral / SPIRAL_GROW_TICKS)
+    if spiral % SPIRAL_PERIOD_TICKS < share * SPIRAL_PERIOD_TICKS:
+        return FORWARD
+    return RIGHT
 
 
 @njit
