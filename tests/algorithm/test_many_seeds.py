@@ -1,0 +1,52 @@
+"""The bugs that matter, over many seeds at loss 0.2: two robots on one tag, overlapping
+bodies, two Leaders in a remnant, robots left in Danger or Leader, and formation that
+stops completing (a floor under today's success share, so a regression shows)."""
+
+from __future__ import annotations
+
+import pytest
+
+from etswarm.algorithm.run import ETRun, RunConfig
+from etswarm.measures.formation import min_pair_distance
+
+SEEDS = range(20)
+
+
+def run_summary(shape: str, seed: int, damage: tuple[str, ...] = ()) -> tuple[ETRun, dict]:
+    run = ETRun(RunConfig(shape=shape, seed=seed, max_time_s=3600.0, damage=damage))
+    return run, run.run()
+
+
+@pytest.mark.slow
+def test_triangle_over_twenty_seeds_keeps_the_invariants() -> None:
+    formed = 0
+    for seed in SEEDS:
+        run, summary = run_summary("triangle", seed)
+        assert summary["duplicate_tags"] == [], (seed, summary["duplicate_tags"])
+        assert min_pair_distance(run.world.pos, run.world.present) > 2 * 16.5 - 1.0, seed
+        assert summary["max_leaders_per_component"] <= 1, seed
+        if summary["formed"]:
+            assert summary["jaccard"] == 1.0, seed
+            formed += 1
+    # Measured 16 of 20 when this test was written (issue 4 wants 19 of 20).
+    assert formed >= 15, formed
+
+
+@pytest.mark.slow
+def test_triangle_split_over_twenty_seeds_elects_one_leader_per_remnant() -> None:
+    reformed = 0
+    for seed in SEEDS:
+        _, summary = run_summary("triangle", seed, damage=("split x=0 at=formed+30",))
+        if not summary["formed"]:
+            continue  # the damage never came; the formation test covers these seeds
+        assert summary["max_leaders_per_component"] <= 1, seed
+        for comp in summary["components"]:
+            if comp["census_count"] is not None:
+                assert comp["census_count"] == comp["robots"], (seed, comp)
+        assert summary["duplicate_tags"] == [], seed
+        if summary["settled"]:
+            assert summary["states"]["Danger"] == 0, seed
+            assert summary["states"]["Leader"] == 0, seed
+            reformed += 1
+    # Measured: 16 seeds formed, 13 of them re-formed both halves within the hour.
+    assert reformed >= 12, reformed
