@@ -141,6 +141,9 @@ def ingest(i, k, tick, ri, in_type, in_data, in_dist, nb, nb_dist):  # type: ign
         nb[i, slot, NB_EPARENT] = -1 if parent == 0xFFFF else parent
         nb[i, slot, NB_ESUB] = int(in_data[i, k, 7]) | (int(in_data[i, k, 8]) << 8)
         nb[i, slot, NB_ELAST] = tick
+        if nb[i, slot, NB_EEPOCH] <= ri[i, R_EPOCH] and ri[i, R_EPOCH] > 0:
+            # It still elects for a target this robot has adopted: relay the announcement.
+            ri[i, R_ADOPTED_AT] = tick
         return kind
     if kind == MSG_TARGET:
         epoch = near_epoch(ri[i, R_EPOCH] + 1, int(in_data[i, k, 2]), 256)
@@ -154,6 +157,8 @@ def ingest(i, k, tick, ri, in_type, in_data, in_dist, nb, nb_dist):  # type: ign
         return kind
     state = int(in_data[i, k, 2]) & 0x0F
     nb[i, slot, NB_EPOCH] = near_epoch(ri[i, R_EPOCH], int(in_type[i, k]) >> EPOCH_SHIFT, 32)
+    if nb[i, slot, NB_EPOCH] < ri[i, R_EPOCH]:
+        ri[i, R_ADOPTED_AT] = tick  # it works for an older target: relay the newer one
     if not created and nb[i, slot, NB_STATE] != state:
         nb[i, slot, NB_PREV] = nb[i, slot, NB_STATE]
     nb[i, slot, NB_STATE] = state

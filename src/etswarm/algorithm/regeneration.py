@@ -245,8 +245,8 @@ def adopt_target(i, tick, ri, nb, slot, epoch, leader, gene_flag, gene_nn, slot_
 
 @njit
 def announcement_rule(i, tick, ri, nb, gene_flag, gene_nn, slot_info, ci):  # type: ignore[no-untyped-def]
-    """Adopt a heard announcement of the target this robot's election was for; a Leader
-    adopts the target the host computed for it."""
+    """Adopt a heard announcement of the target this robot's election was for (or of a
+    newer one); a Leader adopts the target the host computed for it."""
     if ri[i, R_PHASE] != PHASE_ELECTING:
         return False
     epoch = ri[i, R_EPOCH] + 1
@@ -254,10 +254,13 @@ def announcement_rule(i, tick, ri, nb, gene_flag, gene_nn, slot_info, ci):  # ty
         slot = ri[i, R_NEWSLOT]
         adopt_target(i, tick, ri, nb, slot, epoch, i, gene_flag, gene_nn, slot_info, ci)
         return True
-    if ri[i, R_PEND_EPOCH] == epoch:
+    if ri[i, R_PEND_EPOCH] >= epoch:
+        # The target of this election, or a newer one: a robot that missed a whole
+        # regeneration (it kept electing for an epoch the others are past) catches up.
         slot = find_slot(slot_info, ri[i, R_PEND_N], ri[i, R_PEND_TX], ri[i, R_PEND_TY])
         if slot >= 0:
             leader = ri[i, R_LEADER]
-            adopt_target(i, tick, ri, nb, slot, epoch, leader, gene_flag, gene_nn, slot_info, ci)
+            pend = ri[i, R_PEND_EPOCH]
+            adopt_target(i, tick, ri, nb, slot, pend, leader, gene_flag, gene_nn, slot_info, ci)
             return True
     return False
