@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import numpy as np
 import pytest
 
 from etswarm.algorithm.run import ETRun, RunConfig
@@ -43,3 +44,15 @@ def test_split_makes_two_remnants_with_exact_census() -> None:
     sizes = sorted(c["robots"] for c in summary["components"])
     assert sizes == [3, 12]
     assert sum(sizes) == 15
+
+
+def test_targets_are_drawn_where_the_remnants_are() -> None:
+    run = ETRun(RunConfig(shape="triangle", seed=1, max_time_s=3 * 3600, damage=("split x=0",)))
+    summary = run.run()
+    assert summary["settled"]
+    sites = run.target_sites_world()
+    assert len(sites) == sum(c["target_cells"] for c in summary["components"])
+    pos = run.world.pos[run.world.present & run.world.alive]
+    # every site of every remnant's target lies under one of its robots (formed, moved away)
+    nearest = np.min(np.hypot(*(sites[:, None, :] - pos[None, :, :]).transpose(2, 0, 1)), axis=1)
+    assert nearest.max() < 20.0

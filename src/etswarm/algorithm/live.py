@@ -18,7 +18,6 @@ from etswarm.algorithm.memory import (
 from etswarm.algorithm.run import ETRun
 from etswarm.algorithm.states import PLACED_STATES, STATE_NAMES
 from etswarm.damage.apply import SPLIT_SHIFT_MM
-from etswarm.shapes.lattice import tags_to_xy
 from etswarm.viewer.scene import Scene
 
 Point = tuple[float, float]
@@ -56,7 +55,7 @@ class ETLive:
             tag=r.controller.tags.copy(),
             has_tag=has_tag,
             ts=np.where(has_tag, r.controller.ri[:, R_TS], 0),
-            target_sites=tags_to_xy(r.target, r.config.et.spacing_mm),
+            target_sites=r.target_sites_world(),
             comm_range_mm=r.sim_params.comm_range_mm,
             body_radius_mm=r.sim_params.body_radius_mm,
             sim_time_s=r.sim_time_s,

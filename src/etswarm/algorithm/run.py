@@ -32,15 +32,17 @@ from etswarm.algorithm.states import PLACED_STATES, STATE_NAMES, State
 from etswarm.damage import DamageSpec, apply_damage, parse_damage
 from etswarm.errors import EtswarmError
 from etswarm.measures.formation import (
+    apply_fit,
     components,
     duplicate_tags,
     is_formed,
     jaccard,
     placement_error_mm,
+    rigid_fit,
 )
 from etswarm.seeding import stream
 from etswarm.shapes import load_shape, scale
-from etswarm.shapes.lattice import NEIGHBOUR_OFFSETS
+from etswarm.shapes.lattice import NEIGHBOUR_OFFSETS, tags_to_xy
 from etswarm.sim import Simulator
 from etswarm.sim.params import SimParams
 from etswarm.sim.world import World
@@ -367,6 +369,24 @@ class ETRun:
                 }
             )
         return report
+
+    def target_sites_world(self) -> np.ndarray:
+        """Where each remnant's current target sits in the world, (M, 2) mm: its sites
+        mapped by the best rigid fit of its tagged robots (a moved or regrown remnant's
+        target follows the remnant). Remnants with fewer than two tagged robots add none."""
+        holds, _ = self._masks()
+        tags = self.controller.tags
+        slots = self.controller.ri[:, R_TSLOT]
+        d = self.config.et.spacing_mm
+        out = [np.zeros((0, 2))]
+        for group in self._groups():
+            tagged = group[holds[group]]
+            target = self.controller.slot_cells[int(np.bincount(slots[group]).argmax())]
+            if len(tagged) < 2 or len(target) == 0:
+                continue
+            fit = rigid_fit(tags_to_xy(tags[tagged], d), self.world.pos[tagged])
+            out.append(apply_fit(fit, tags_to_xy(target, d)))
+        return np.vstack(out)
 
     def summary(self) -> dict[str, Any]:
         """The JSON summary (DESIGN §5 measures; keys documented in the README)."""

@@ -57,13 +57,26 @@ def placement_error_mm(
         return None
     p = np.asarray(pos, dtype=np.float64)[mask]
     q = tags_to_xy(np.asarray(tags)[mask], spacing_mm)
-    pc = p - p.mean(axis=0)
-    qc = q - q.mean(axis=0)
-    u, _, vt = np.linalg.svd(qc.T @ pc)
-    sign = np.sign(np.linalg.det(u @ vt)) or 1.0
-    rot = u @ np.diag([1.0, sign]) @ vt
-    resid = qc @ rot - pc
+    resid = apply_fit(rigid_fit(q, p), q) - p
     return float(np.sqrt(np.mean(np.sum(resid**2, axis=1))))
+
+
+def rigid_fit(
+    ideal: np.ndarray, actual: np.ndarray
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Best rotation + translation (Kabsch) taking ``ideal`` (K, 2) mm onto ``actual``
+    (K, 2) mm, K >= 2: returns ``(rot (2, 2), ideal_centre (2,), actual_centre (2,))``."""
+    qc0 = ideal.mean(axis=0)
+    pc0 = actual.mean(axis=0)
+    u, _, vt = np.linalg.svd((ideal - qc0).T @ (actual - pc0))
+    sign = np.sign(np.linalg.det(u @ vt)) or 1.0
+    return u @ np.diag([1.0, sign]) @ vt, qc0, pc0
+
+
+def apply_fit(fit: tuple[np.ndarray, np.ndarray, np.ndarray], points: np.ndarray) -> np.ndarray:
+    """Map ideal positions ``points`` (M, 2) mm through a :func:`rigid_fit` result."""
+    rot, qc0, pc0 = fit
+    return (np.asarray(points, dtype=np.float64) - qc0) @ rot + pc0
 
 
 def components(pos: np.ndarray, members: np.ndarray, radius_mm: float) -> list[np.ndarray]:
