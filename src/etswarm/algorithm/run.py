@@ -337,16 +337,19 @@ class ETRun:
         comps = self.component_report()
         return bool(comps) and all(c["formed"] for c in comps)
 
+    def _slot_of(self, group: np.ndarray) -> int:
+        """The target slot most robots of ``group`` (IDs) work for."""
+        return int(np.bincount(self.controller.ri[group, R_TSLOT]).argmax())
+
     def component_report(self) -> list[dict[str, Any]]:
         """Per radio-connected group of working robots: its target and how it stands."""
         holds, stable = self._masks()
         tags = self.controller.tags
-        slots = self.controller.ri[:, R_TSLOT]
         report = []
         for group in self._groups():
             member = np.zeros(self.world.n, dtype=bool)
             member[group] = True
-            slot = int(np.bincount(slots[group]).argmax())
+            slot = self._slot_of(group)
             target = self.controller.slot_cells[slot]
             census = self.census.get(slot)
             too_small = slot != 0 and len(target) == 0
@@ -376,12 +379,11 @@ class ETRun:
         target follows the remnant). Remnants with fewer than two tagged robots add none."""
         holds, _ = self._masks()
         tags = self.controller.tags
-        slots = self.controller.ri[:, R_TSLOT]
         d = self.config.et.spacing_mm
         out = [np.zeros((0, 2))]
         for group in self._groups():
             tagged = group[holds[group]]
-            target = self.controller.slot_cells[int(np.bincount(slots[group]).argmax())]
+            target = self.controller.slot_cells[self._slot_of(group)]
             if len(tagged) < 2 or len(target) == 0:
                 continue
             fit = rigid_fit(tags_to_xy(tags[tagged], d), self.world.pos[tagged])
