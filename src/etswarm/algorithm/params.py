@@ -28,7 +28,9 @@ C_TICKS_CLEAR = 12  # a Queued robot leaves only after hearing no searcher this 
 C_TICKS_REGEN_QUIET = 13  # election/census quiet time before a robot declares itself Leader
 C_CENSUS_WALK = 14  # 1: the Leader counts by walking round the remnant; 0: spanning tree
 C_TICKS_WALK_MAX = 15  # the census walk gives up after this long
-N_CI = 16
+C_ORBIT_BOUNCE = 16  # 1: a searcher turns back where the shape ends and the repository begins
+C_CREEP = 17  # 1: a searcher near a free site moves stop-and-go
+N_CI = 18
 
 F_SPACING = 0  # lattice spacing d
 F_PAIR_TOL = 1  # two references within this of d trigger a site candidate
@@ -43,6 +45,9 @@ N_CF = 9
 
 #: Census methods (``ETParams.census``): the paper's periphery walk, or a spanning tree.
 CENSUS_METHODS = ("tree", "walk")
+#: How searchers go round the group (``ETParams.orbit``): always clockwise (the paper), or
+#: back and forth round the shape, turning back where it meets the repository.
+ORBIT_MODES = ("bounce", "clockwise")
 
 
 #: Parameters that may be zero (all others must be positive).
@@ -80,6 +85,14 @@ class ETParams:
     census: str = "tree"
     census_walk_timeout_s: float = 1200.0
     census_collect_mm: float = 60.0
+    #: "clockwise": searchers edge-follow the whole group clockwise, repository included
+    #: (the paper). "bounce": a searcher that leaves the shape along the repository turns
+    #: round and goes back the other way, so it sweeps the shape's edge and never walks the
+    #: repository again.
+    orbit: str = "clockwise"
+    #: A searcher near a free site stops and goes, so it sees the site with fresh readings
+    #: ("on"), or passes at full speed as in the paper ("off").
+    creep: str = "on"
 
     def __post_init__(self) -> None:
         for f in fields(self):
@@ -87,6 +100,12 @@ class ETParams:
             if f.name == "census":
                 if value not in CENSUS_METHODS:
                     raise EtswarmError(f"census must be one of {CENSUS_METHODS}, got {value!r}")
+            elif f.name == "creep":
+                if value not in ("on", "off"):
+                    raise EtswarmError(f"{f.name} must be 'on' or 'off', got {value!r}")
+            elif f.name == "orbit":
+                if value not in ORBIT_MODES:
+                    raise EtswarmError(f"orbit must be one of {ORBIT_MODES}, got {value!r}")
             elif f.name in NON_NEGATIVE:
                 if not value >= 0:
                     raise EtswarmError(f"ET parameter {f.name} must be >= 0, got {value}")
@@ -129,6 +148,8 @@ class ETParams:
         )
         ci[C_CENSUS_WALK] = 1 if self.census == "walk" else 0
         ci[C_TICKS_WALK_MAX] = ticks(self.census_walk_timeout_s)
+        ci[C_ORBIT_BOUNCE] = 1 if self.orbit == "bounce" else 0
+        ci[C_CREEP] = 1 if self.creep == "on" else 0
         cf = np.zeros(N_CF, dtype=np.float64)
         cf[F_SPACING] = self.spacing_mm
         cf[F_PAIR_TOL] = self.pair_tol_mm

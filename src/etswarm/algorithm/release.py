@@ -7,7 +7,6 @@ from numba import njit
 from etswarm.algorithm.kernel_util import (
     QUEUED,
     SEARCH,
-    set_state,
 )
 from etswarm.algorithm.memory import (
     NB_EPOCH,
@@ -15,17 +14,12 @@ from etswarm.algorithm.memory import (
     NB_LAST,
     NB_RELEASED,
     NB_STATE,
-    R_COOLDOWN,
     R_EPOCH,
     R_FLOOR,
     R_FLOOR_SINCE,
     R_QMIN,
     R_QMIN_SINCE,
     R_RELEASED,
-    R_SUB,
-    R_SUB_SINCE,
-    R_YIELD_SINCE,
-    SUB_FOLLOW,
 )
 from etswarm.algorithm.params import (
     C_TICKS_CLEAR,
@@ -33,6 +27,7 @@ from etswarm.algorithm.params import (
     C_TICKS_QUIET,
     C_TICKS_RELEASE,
 )
+from etswarm.algorithm.search import begin_search
 
 
 @njit
@@ -78,11 +73,7 @@ def queued_rule(i, tick, ri, nb, ci, limit):  # type: ignore[no-untyped-def]
         and tick - ri[i, R_QMIN_SINCE] >= ci[C_TICKS_QUIET]
         and tick - ri[i, R_FLOOR_SINCE] >= ci[C_TICKS_RELEASE]
     ):
-        set_state(i, ri, SEARCH, tick)
+        begin_search(i, tick, ri)
         ri[i, R_FLOOR] = i
         ri[i, R_FLOOR_SINCE] = tick
         ri[i, R_RELEASED] = released + 1
-        ri[i, R_SUB] = SUB_FOLLOW
-        ri[i, R_SUB_SINCE] = tick
-        ri[i, R_YIELD_SINCE] = -1
-        ri[i, R_COOLDOWN] = tick

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import numpy as np
 from numba import njit
 
 from etswarm.algorithm.kernel_util import (
@@ -34,10 +35,14 @@ from etswarm.algorithm.memory import (
     R_CAND_Y,
     R_COOLDOWN,
     R_COUNT,
+    R_CREEP_UNTIL,
     R_HAS_TAG,
     R_LOST_SINCE,
     R_NN,
+    R_ON_SHAPE,
+    R_ORBIT,
     R_REF_ID,
+    R_SHAPE_SINCE,
     R_SUB,
     R_SUB_SINCE,
     R_TAG_X,
@@ -50,6 +55,8 @@ from etswarm.algorithm.memory import (
     SUB_SETTLE,
 )
 from etswarm.algorithm.params import (
+    C_CREEP,
+    C_ORBIT_BOUNCE,
     C_TICKS_COOLDOWN,
     C_TICKS_MOVE_FRESH,
     C_TICKS_NB_FRESH,
@@ -68,13 +75,45 @@ from etswarm.algorithm.params import (
 #: Readings of a searching robot older than this (ticks) are ignored for steering.
 SEARCHER_FRESH_TICKS = 31
 #: A free site must keep this many consecutive free neighbour sites to stay reachable.
-OPENING_SITES = 3
+OPENING_SITES = 2
+#: Taking a site must not shut free shape sites in a hole (see ``closes_a_hole``), looking
+#: this many lattice steps round the site.
+HOLE_RADIUS = 3
 #: A lost searcher first pivots where it lost the group for this long (ticks) ...
 LOST_PIVOT_TICKS = 310
 #: ... then spirals outwards: in every period of this many ticks it drives forward for a
 #: growing share (from 20 % to 90 % over ``SPIRAL_GROW_TICKS``) and pivots right for the rest.
 SPIRAL_PERIOD_TICKS = 124
 SPIRAL_GROW_TICKS = 18600
+#: Near a free site (pair and balance tolerances times ``CREEP_TOL_SCALE``) a searcher
+#: creeps: in every ``CREEP_PERIOD_TICKS`` it stands still for ``CREEP_STOP_TICKS`` and
+#: moves for the rest; the mode lasts ``CREEP_HOLD_TICKS`` after the last such reading.
+CREEP_TOL_SCALE = 3.0
+#: A searcher's pair and balance tolerances grow linearly from 1x to ``WIDEN_MAX`` x over
+#: its first ``WIDEN_TICKS`` at the shape (since it first heard a placed robot).
+WIDEN_MAX = 3.0
+WIDEN_TICKS = 31 * 1200
+#: ... but only at a site with at least this many placed neighbours heard.
+WIDE_MIN_NEIGHBOURS = 3
+CREEP_PERIOD_TICKS = 24
+CREEP_STOP_TICKS = 16
+CREEP_HOLD_TICKS = 62
+
+
+@njit
+def begin_search(i, tick, ri):  # type: ignore[no-untyped-def]
+    """Robot i leaves the repository: it starts following the group clockwise."""
+    set_state(i, ri, SEARCH, tick)
+    ri[i, R_HAS_TAG] = 0
+    ri[i, R_SUB] = SUB_FOLLOW
+    ri[i, R_SUB_SINCE] = tick
+    ri[i, R_YIELD_SINCE] = -1
+    ri[i, R_COOLDOWN] = tick
+    ri[i, R_ORBIT] = 0
+    ri[i, R_ON_SHAPE] = 0
+    ri[i, R_SHAPE_SINCE] = 0
+    ri[i, R_CREEP_UNTIL] = 0
+    ri[i, R_LOST_SINCE] = 0
 
 
 @njit
@@ -126,7 +165,83 @@ def encloses_a_site(i, cx, cy, nb, gene_flag, ci):  # type: ignore[no-untyped-de
 
 
 @njit
-def find_site(i, tick, since, strict, ref_id, nb, nb_dist, gene_flag, ci, cf):  # type: ignore[no-untyped-def]
+def in_window(dist_a, dist_b, d, cf, tol_scale):  # type: ignore[no-untyped-def]
+    """Two references heard at ``dist_a`` and ``dist_b`` mm are both within the pair
+    tolerance of d and within the balance tolerance of each other (both times
+    ``tol_scale``)."""
+    pair_tol = cf[F_PAIR_TOL] * tol_scale
+    return (
+        abs(dist_a - d) <= pair_tol
+        and abs(dist_b - d) <= pair_tol
+        and abs(dist_a - dist_b) <= cf[F_BALANCE_TOL] * tol_scale
+    )
+
+
+@njit(inline="always")
+def hex_distance(dx, dy):  # type: ignore[no-untyped-def]
+    """Lattice steps between two tags that differ by (dx, dy)."""
+    if (dx >= 0) == (dy >= 0):
+        return max(abs(dx), abs(dy))
+    return abs(dx) + abs(dy)
+
+
+@njit
+def open_from(i, cx, cy, sx, sy, center_taken, nb, gene_flag, ci):  # type: ignore[no-untyped-def]
+    """Free shape site (cx + sx, cy + sy) reaches, through free shape sites, a site outside
+    the shape or the edge of what robot i knows (``HOLE_RADIUS`` lattice steps from
+    (cx, cy), beyond which it assumes the way open). Sites robot i knows no holder of
+    count as free; (cx, cy) itself counts as held when ``center_taken``."""
+    size = 2 * HOLE_RADIUS + 1
+    seen = np.zeros((size, size), dtype=np.uint8)
+    queue_x = np.empty(size * size, dtype=np.int64)
+    queue_y = np.empty(size * size, dtype=np.int64)
+    if center_taken:
+        seen[HOLE_RADIUS, HOLE_RADIUS] = 1
+    seen[sx + HOLE_RADIUS, sy + HOLE_RADIUS] = 1
+    queue_x[0] = sx
+    queue_y[0] = sy
+    head = 0
+    tail = 1
+    while head < tail:
+        qx = queue_x[head]
+        qy = queue_y[head]
+        head += 1
+        if hex_distance(qx, qy) >= HOLE_RADIUS:
+            return True
+        for q in range(6):
+            nx = qx + DIR_X[q]
+            ny = qy + DIR_Y[q]
+            if seen[nx + HOLE_RADIUS, ny + HOLE_RADIUS]:
+                continue
+            if gene_at(gene_flag, ci, cx + nx, cy + ny) != 1:
+                return True  # the outside of the shape
+            seen[nx + HOLE_RADIUS, ny + HOLE_RADIUS] = 1
+            if site_taken(i, cx + nx, cy + ny, nb):
+                continue
+            queue_x[tail] = nx
+            queue_y[tail] = ny
+            tail += 1
+    return False
+
+
+@njit
+def closes_a_hole(i, cx, cy, nb, gene_flag, ci):  # type: ignore[no-untyped-def]
+    """Taking (cx, cy) would leave a free shape site next to it in a hole: cut off from the
+    outside of the shape (see ``open_from``), where searching robots come from."""
+    for k in range(6):
+        sx = DIR_X[k]
+        sy = DIR_Y[k]
+        if gene_at(gene_flag, ci, cx + sx, cy + sy) != 1 or site_taken(i, cx + sx, cy + sy, nb):
+            continue
+        if not open_from(i, cx, cy, sx, sy, True, nb, gene_flag, ci):
+            return True
+    return False
+
+
+@njit
+def find_site(  # type: ignore[no-untyped-def]
+    i, tick, since, strict, ref_id, orbit, nb, nb_dist, gene_flag, ci, cf, tol_scale, wide_min
+):
     """Localise robot i from its placed neighbours (paper Sec. 4.1).
 
     Two placed robots heard at about d whose tags are adjacent put the robot at one of
@@ -134,18 +249,21 @@ def find_site(i, tick, since, strict, ref_id, nb, nb_dist, gene_flag, ci, cf):  
     only with evidence that it is not at ``c2``: ``c2`` is held by a robot it knows of, a
     third placed robot heard since ``since`` is at the distance ``c`` predicts and not at
     the one ``c2`` predicts, or ``c`` is on the outer side of the pair for a robot that
-    orbits clockwise from the reference ``ref_id`` it followed. ``c`` must also have gene
+    orbits clockwise (``orbit`` 0; the other side for 1) from the reference ``ref_id`` it
+    followed. ``c`` must also have gene
     flag 1, be held by no robot it knows of, agree with every placed robot heard since
     ``since`` and, when ``strict``, every known robot of a neighbouring site must have
     been heard since ``since``; and
     an Active robot must be adjacent to it (the least TS among them is returned); and
     taking it must not shut a free shape site next to it in (``encloses_a_site``).
+    ``tol_scale`` widens the pair and balance tolerances; a candidate gets the wider window
+    only when at least ``wide_min`` placed robots of its neighbour sites were heard (a
+    pocket, where the site is hard to mistake), else the plain one.
 
     Returns ``(found, x, y, min_active_ts)``; the best-fitting candidate wins.
     """
     d = cf[F_SPACING]
-    pair_tol = cf[F_PAIR_TOL]
-    balance_tol = cf[F_BALANCE_TOL]
+    pair_tol = cf[F_PAIR_TOL] * tol_scale
     consist_tol = cf[F_CONSIST_TOL]
     fresh = ci[C_TICKS_NB_FRESH]
     slots = nb.shape[1]
@@ -165,7 +283,7 @@ def find_site(i, tick, since, strict, ref_id, nb, nb_dist, gene_flag, ci, cf):  
                 continue
             if nb[i, b, NB_LAST] < since or abs(nb_dist[i, b] - d) > pair_tol:
                 continue
-            if abs(nb_dist[i, a] - nb_dist[i, b]) > balance_tol:
+            if not in_window(nb_dist[i, a], nb_dist[i, b], d, cf, tol_scale):
                 # Settle midway between the two references, not where the window opens.
                 continue
             k = direction_index(nb[i, b, NB_TX] - ax, nb[i, b, NB_TY] - ay)
@@ -178,6 +296,8 @@ def find_site(i, tick, since, strict, ref_id, nb, nb_dist, gene_flag, ci, cf):  
                 outer_side = 0
             elif nb[i, b, NB_ID] == ref_id:
                 outer_side = 1
+            if outer_side >= 0 and orbit == 1:
+                outer_side = 1 - outer_side  # anticlockwise: the mirror image
             for side in range(2):
                 kk = (k + 5) % 6 if side == 0 else (k + 1) % 6
                 k2 = (k + 1) % 6 if side == 0 else (k + 5) % 6
@@ -187,12 +307,18 @@ def find_site(i, tick, since, strict, ref_id, nb, nb_dist, gene_flag, ci, cf):  
                 c2y = ay + DIR_Y[k2]
                 if gene_at(gene_flag, ci, cx, cy) != 1 or site_taken(i, cx, cy, nb):
                     continue
-                if encloses_a_site(i, cx, cy, nb, gene_flag, ci):
+                # Keep the free sites reachable from outside; in a hole that is closed
+                # already, a robot that got in may take any site.
+                if open_from(i, cx, cy, 0, 0, False, nb, gene_flag, ci) and (
+                    encloses_a_site(i, cx, cy, nb, gene_flag, ci)
+                    or closes_a_hole(i, cx, cy, nb, gene_flag, ci)
+                ):
                     continue
                 ruled_out_mirror = side == outer_side or site_taken(i, c2x, c2y, nb)
                 ok = True
                 err = 0.0
                 min_ts = -1
+                n_adjacent = 0
                 for j in range(slots):
                     if nb[i, j, NB_ID] < 0 or not is_placed(nb[i, j, NB_STATE]):
                         continue
@@ -208,6 +334,8 @@ def find_site(i, tick, since, strict, ref_id, nb, nb_dist, gene_flag, ci, cf):  
                         pred2 = lattice_distance(c2x, c2y, jx, jy) * d
                         if abs(nb_dist[i, j] - pred2) > consist_tol:
                             ruled_out_mirror = True
+                        if direction_index(jx - cx, jy - cy) >= 0:
+                            n_adjacent += 1
                     elif strict and pred < 1.2 * d:
                         # A lattice neighbour of the site must have been heard by now.
                         ok = False
@@ -218,6 +346,8 @@ def find_site(i, tick, since, strict, ref_id, nb, nb_dist, gene_flag, ci, cf):  
                         ts = nb[i, j, NB_TS]
                         if min_ts < 0 or ts < min_ts:
                             min_ts = ts
+                if ok and tol_scale > 1.0 and n_adjacent < wide_min:
+                    ok = in_window(nb_dist[i, a], nb_dist[i, b], d, cf, 1.0)
                 if ok and ruled_out_mirror and min_ts >= 0 and err < best_err:
                     best_err = err
                     best_x = cx
@@ -269,7 +399,15 @@ def search_rule(i, tick, new_msgs, ri, nb, nb_dist, motor, gene_flag, gene_nn, c
         nearest = placed_est
         obstacle = min(queued_est, nearest_searcher)
         track_trend(i, ri, nb, nb_dist, placed_slot, R_REF_ID)
+        ri[i, R_ON_SHAPE] = 1
+        if ri[i, R_SHAPE_SINCE] == 0:
+            ri[i, R_SHAPE_SINCE] = tick + 1
     elif queued_slot >= 0:
+        if ci[C_ORBIT_BOUNCE] == 1 and ri[i, R_ON_SHAPE] == 1:
+            # Left the shape along the repository: go back round the shape the other way
+            # instead of walking the repository (and meeting the robots coming along it).
+            ri[i, R_ORBIT] = 1 - ri[i, R_ORBIT]
+            ri[i, R_ON_SHAPE] = 0
         reading = nb_dist[i, queued_slot]
         nearest = queued_est
         obstacle = nearest_searcher
@@ -285,12 +423,22 @@ def search_rule(i, tick, new_msgs, ri, nb, nb_dist, motor, gene_flag, gene_nn, c
     elif ri[i, R_LOST_SINCE] == 0:
         ri[i, R_LOST_SINCE] = tick + 1
 
+    # A searcher that has been at the shape for long widens its tolerances: it may be
+    # squeezed where the lattice is distorted and never stand within the tight window.
+    widen = 1.0
+    if ri[i, R_SHAPE_SINCE] > 0:
+        at_shape = tick - ri[i, R_SHAPE_SINCE] + 1
+        widen = 1.0 + (WIDEN_MAX - 1.0) * min(1.0, at_shape / WIDEN_TICKS)
     if ri[i, R_SUB] == SUB_SETTLE:
         motor[i] = STOP
         if tick - ri[i, R_SUB_SINCE] < ci[C_TICKS_SETTLE]:
             return
+        ref = ri[i, R_REF_ID]
+        since = ri[i, R_SUB_SINCE]
+        orbit = ri[i, R_ORBIT]
+        wide_min = WIDE_MIN_NEIGHBOURS
         found, cx, cy, min_ts = find_site(
-            i, tick, ri[i, R_SUB_SINCE], True, ri[i, R_REF_ID], nb, nb_dist, gene_flag, ci, cf
+            i, tick, since, True, ref, orbit, nb, nb_dist, gene_flag, ci, cf, widen, wide_min
         )
         if found and cx == ri[i, R_CAND_X] and cy == ri[i, R_CAND_Y]:
             set_state(i, ri, INACTIVE, tick)
@@ -322,8 +470,19 @@ def search_rule(i, tick, new_msgs, ri, nb, nb_dist, motor, gene_flag, gene_nn, c
         ri[i, R_YIELD_SINCE] = -1
 
     if new_msgs and tick >= ri[i, R_COOLDOWN]:
+        ref = ri[i, R_REF_ID]
+        orbit = ri[i, R_ORBIT]
+        phase = (tick + i) % CREEP_PERIOD_TICKS
+        creeping = ci[C_CREEP] == 1 and tick < ri[i, R_CREEP_UNTIL]
+        if not creeping:
+            since = tick - steer_fresh
+        elif phase < CREEP_STOP_TICKS:
+            since = tick - phase + 1  # only readings taken standing still
+        else:
+            since = tick + 1  # moving: no capture
+        wide_min = WIDE_MIN_NEIGHBOURS
         found, cx, cy, min_ts = find_site(
-            i, tick, tick - steer_fresh, False, ri[i, R_REF_ID], nb, nb_dist, gene_flag, ci, cf
+            i, tick, since, False, ref, orbit, nb, nb_dist, gene_flag, ci, cf, widen, wide_min
         )
         if found:
             motor[i] = STOP
@@ -332,20 +491,35 @@ def search_rule(i, tick, new_msgs, ri, nb, nb_dist, motor, gene_flag, gene_nn, c
             ri[i, R_CAND_X] = cx
             ri[i, R_CAND_Y] = cy
             return
+        recent = tick - steer_fresh
+        near, _, _, _ = find_site(
+            i, tick, recent, False, ref, orbit, nb, nb_dist, gene_flag, ci, cf, CREEP_TOL_SCALE, 0
+        )
+        if near:
+            ri[i, R_CREEP_UNTIL] = tick + CREEP_HOLD_TICKS
+    # Near a free site: stop-and-go, so that steering and the capture test use readings
+    # taken where the robot is, not up to seconds ago.
+    creep_stop = (tick + i) % CREEP_PERIOD_TICKS < CREEP_STOP_TICKS
+    if ci[C_CREEP] == 1 and tick < ri[i, R_CREEP_UNTIL] and creep_stop:
+        motor[i] = STOP
+        return
 
     aim = d + cf[F_FOLLOW_OFFSET]
     # Kilobot orbit (both pivots also move the body forward): pivot away from the group
     # when the last reading of the reference is nearer than the aim, towards it otherwise.
     # Any robot that may have come nearer than the clearance is turned away from.
+    # Anticlockwise, the group is on the other hand: the pivots swap.
     clearance = cf[F_CLEARANCE]
+    away = LEFT if ri[i, R_ORBIT] == 0 else RIGHT
+    toward = RIGHT if ri[i, R_ORBIT] == 0 else LEFT
     if obstacle < clearance or nearest < clearance:
-        motor[i] = LEFT
+        motor[i] = away
     elif lost:
         motor[i] = lost_motion(tick, ri[i, R_LOST_SINCE] - 1)
     elif reading < aim:
-        motor[i] = LEFT
+        motor[i] = away
     else:
-        motor[i] = RIGHT
+        motor[i] = toward
 
 
 @njit

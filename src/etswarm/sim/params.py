@@ -74,8 +74,9 @@ class SimParams:
     ``still_push_share``: when a moving robot pushes one whose motors are off, the share of
     the overlap the still robot takes (the mover takes the rest). A Kilobot standing on its
     three legs grips the table while a vibrating one slides, so values below 0.5 model that
-    grip (0.05: a still robot yields only a little). The default 0.5 is Kilombo's symmetric
-    push; two moving or two still robots always share an overlap equally.
+    grip. The default 0.05 (a still robot yields only a little) keeps a searching robot
+    from shoving placed robots off their sites; 0.5 is Kilombo's symmetric push. Two moving
+    or two still robots always share an overlap equally.
     """
 
     ticks_per_s: int = 31
@@ -95,7 +96,7 @@ class SimParams:
     arena_mm: float = 0.0
     push_slop_mm: float = 0.1
     max_push_passes: int = 4
-    still_push_share: float = 0.5
+    still_push_share: float = 0.05
     source: str = field(default="", compare=False, repr=False)
 
     def __post_init__(self) -> None:
