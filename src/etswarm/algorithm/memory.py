@@ -96,7 +96,8 @@ R_ORBIT = 61  # a searcher's direction round the group: 0 clockwise, 1 anticlock
 R_ON_SHAPE = 62  # 1 once a searcher steered by a placed robot since it last turned round
 R_CREEP_UNTIL = 63  # a searcher near a free site creeps (stop-and-go) until this tick
 R_SHAPE_SINCE = 64  # 1 + tick a searcher first heard a placed robot (0: not yet)
-R_FIELDS = 65
+R_TOWARD_SINCE = 65  # a searcher has pivoted towards the group (never away) since this tick
+R_FIELDS = 66
 
 PHASE_NORMAL = 0
 PHASE_ELECTING = 1

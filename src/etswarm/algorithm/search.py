@@ -42,11 +42,13 @@ from etswarm.algorithm.memory import (
     R_ON_SHAPE,
     R_ORBIT,
     R_REF_ID,
+    R_REF_TREND,
     R_SHAPE_SINCE,
     R_SUB,
     R_SUB_SINCE,
     R_TAG_X,
     R_TAG_Y,
+    R_TOWARD_SINCE,
     R_TS,
     R_YIELD_SINCE,
     R_YLD_ID,
@@ -89,6 +91,9 @@ SPIRAL_GROW_TICKS = 18600
 #: creeps: in every ``CREEP_PERIOD_TICKS`` it stands still for ``CREEP_STOP_TICKS`` and
 #: moves for the rest; the mode lasts ``CREEP_HOLD_TICKS`` after the last such reading.
 CREEP_TOL_SCALE = 3.0
+#: A searcher that has pivoted towards the group this long (ticks) without once being
+#: nearer than its aim is circling out of reach; it then drives on while closing in.
+CIRCLING_TICKS = 31 * 10
 #: A searcher's pair and balance tolerances grow linearly from 1x to ``WIDEN_MAX`` x over
 #: its first ``WIDEN_TICKS`` at the shape (since it first heard a placed robot).
 WIDEN_MAX = 3.0
@@ -114,6 +119,7 @@ def begin_search(i, tick, ri):  # type: ignore[no-untyped-def]
     ri[i, R_SHAPE_SINCE] = 0
     ri[i, R_CREEP_UNTIL] = 0
     ri[i, R_LOST_SINCE] = 0
+    ri[i, R_TOWARD_SINCE] = tick
 
 
 @njit
@@ -512,12 +518,15 @@ def search_rule(i, tick, new_msgs, ri, nb, nb_dist, motor, gene_flag, gene_nn, c
     clearance = cf[F_CLEARANCE]
     away = LEFT if ri[i, R_ORBIT] == 0 else RIGHT
     toward = RIGHT if ri[i, R_ORBIT] == 0 else LEFT
-    if obstacle < clearance or nearest < clearance:
+    if obstacle < clearance or nearest < clearance or (not lost and reading < aim):
         motor[i] = away
+        ri[i, R_TOWARD_SINCE] = tick
     elif lost:
         motor[i] = lost_motion(tick, ri[i, R_LOST_SINCE] - 1)
-    elif reading < aim:
-        motor[i] = away
+    elif tick - ri[i, R_TOWARD_SINCE] > CIRCLING_TICKS and ri[i, R_REF_TREND] < 0:
+        # Pivoting towards a group that stays beyond the aim only circles on the spot
+        # (a pivot turns about a leg): drive straight on while the distance shrinks.
+        motor[i] = FORWARD
     else:
         motor[i] = toward
 
