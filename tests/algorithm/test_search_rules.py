@@ -1,0 +1,69 @@
+"""Site choice rules of a searching robot, on hand-made neighbour tables: holes, the
+widened window, and the option checks."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from etswarm.algorithm.memory import NB_ID, NB_MASK, NB_STATE, NB_TX, NB_TY, allocate
+from etswarm.algorithm.params import C_GENE_X0, C_GENE_Y0, ETParams
+from etswarm.algorithm.search import closes_a_hole, in_window, open_from
+from etswarm.algorithm.states import State
+from etswarm.errors import EtswarmError
+
+RING = [(0, 1), (1, 1), (1, 0), (0, -1), (-1, -1), (-1, 0)]
+
+
+def hexagon_world(held: list[tuple[int, int]]):  # type: ignore[no-untyped-def]
+    """Gene of the 7 sites within one step of (0, 0) (all else outside the shape) and a
+    table of robot 0 that hears a Stable robot on every site of ``held``."""
+    gene = np.zeros((5, 5), dtype=np.int64)  # tags -2..2 in both axes
+    for x, y in [(0, 0), *RING]:
+        gene[x + 2, y + 2] = 1
+    ci, _ = ETParams().pack(31, gene_x0=-2, gene_y0=-2)
+    assert ci[C_GENE_X0] == -2 and ci[C_GENE_Y0] == -2
+    _, nb, _ = allocate(1)
+    for slot, (x, y) in enumerate(held):
+        nb[0, slot, NB_ID] = slot + 1
+        nb[0, slot, NB_STATE] = State.STABLE
+        nb[0, slot, NB_TX] = x
+        nb[0, slot, NB_TY] = y
+        nb[0, slot, NB_MASK] = 0
+    return gene, ci, nb
+
+
+def test_taking_the_last_way_in_to_a_free_site_closes_a_hole() -> None:
+    # Ring held except (1, 0): taking it leaves the centre walled in.
+    gene, ci, nb = hexagon_world([s for s in RING if s != (1, 0)])
+    assert closes_a_hole(0, 1, 0, nb, gene, ci)
+
+
+def test_a_free_site_with_another_way_out_stays_open() -> None:
+    # (1, 0) and (0, 1) free: after taking (1, 0) the centre still reaches (0, 1), and
+    # (0, 1) borders the outside of the shape.
+    gene, ci, nb = hexagon_world([s for s in RING if s not in ((1, 0), (0, 1))])
+    assert not closes_a_hole(0, 1, 0, nb, gene, ci)
+    assert open_from(0, 1, 0, -1, 0, True, nb, gene, ci)
+
+
+def test_a_closed_hole_is_recognised() -> None:
+    # The whole ring held: the centre is already shut in, whoever is inside may take it.
+    gene, ci, nb = hexagon_world(list(RING))
+    assert not open_from(0, 0, 0, 0, 0, False, nb, gene, ci)
+    gene, ci, nb = hexagon_world(RING[:-1])
+    assert open_from(0, 0, 0, 0, 0, False, nb, gene, ci)
+
+
+def test_the_window_widens_pair_and_balance_tolerances() -> None:
+    _, cf = ETParams(pair_tol_mm=4.0, balance_tol_mm=8.0).pack(31, 0, 0)
+    assert in_window(41.0, 39.0, 40.0, cf, 1.0)
+    assert not in_window(46.0, 43.0, 40.0, cf, 1.0)  # 6 mm off: outside the plain window
+    assert in_window(46.0, 43.0, 40.0, cf, 2.0)
+    assert not in_window(52.0, 40.0, 40.0, cf, 2.0)  # 12 mm off even when doubled
+
+
+@pytest.mark.parametrize(("field", "value"), [("creep", "maybe"), ("orbit", "left")])
+def test_search_options_are_checked(field: str, value: str) -> None:
+    with pytest.raises(EtswarmError, match=field):
+        ETParams(**{field: value})
