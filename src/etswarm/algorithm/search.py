@@ -84,9 +84,9 @@ HOLE_RADIUS = 3
 #: A lost searcher first pivots where it lost the group for this long (ticks) ...
 LOST_PIVOT_TICKS = 310
 #: ... then spirals outwards: in every period of this many ticks it drives forward for a
-#: growing share (from 20 % to 90 % over ``SPIRAL_GROW_TICKS``) and pivots right for the rest.
+#: growing share (1 - 0.8 / (1 + t / ``SPIRAL_GROW_TICKS``)) and pivots right for the rest.
 SPIRAL_PERIOD_TICKS = 124
-SPIRAL_GROW_TICKS = 18600
+SPIRAL_GROW_TICKS = 31 * 200
 #: Near a free site (pair and balance tolerances times ``CREEP_TOL_SCALE``) a searcher
 #: creeps: in every ``CREEP_PERIOD_TICKS`` it stands still for ``CREEP_STOP_TICKS`` and
 #: moves for the rest; the mode lasts ``CREEP_HOLD_TICKS`` after the last such reading.
@@ -543,7 +543,9 @@ def lost_motion(tick, since):  # type: ignore[no-untyped-def]
     if lost_for < LOST_PIVOT_TICKS:
         return RIGHT
     spiral = lost_for - LOST_PIVOT_TICKS
-    share = 0.2 + 0.7 * min(1.0, spiral / SPIRAL_GROW_TICKS)
+    # The pivot share falls as 1/(1 + t/T), so the radius keeps growing about linearly
+    # (by ~0.2 m per 1000 s), slowly enough that no ring skips over the group.
+    share = 1.0 - 0.8 / (1.0 + spiral / SPIRAL_GROW_TICKS)
     if spiral % SPIRAL_PERIOD_TICKS < share * SPIRAL_PERIOD_TICKS:
         return FORWARD
     return RIGHT
