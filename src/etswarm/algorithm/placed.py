@@ -6,6 +6,8 @@ from numba import njit
 
 from etswarm.algorithm.kernel_util import (
     ACTIVE,
+    DIR_X,
+    DIR_Y,
     INACTIVE,
     QUASI,
     STABLE,
@@ -17,6 +19,7 @@ from etswarm.algorithm.memory import (
     NB_EPOCH,
     NB_ID,
     NB_LAST,
+    NB_MASK,
     NB_PREV,
     NB_STATE,
     NB_TS,
@@ -43,6 +46,32 @@ from etswarm.algorithm.regeneration import start_election
 
 #: Inactive robots with no Active neighbour for this many evaluations become Active.
 INACTIVE_PATIENCE_TICKS = 31 * 60
+
+
+@njit
+def reported_dirs(i, tick, ri, nb, fresh, seen_dirs):  # type: ignore[no-untyped-def]
+    """Bits k of robot i's neighbour sites it does not hear the holder of (not in
+    ``seen_dirs``) that a fresh placed neighbour of the same target reports held."""
+    x = ri[i, R_TAG_X]
+    y = ri[i, R_TAG_Y]
+    epoch = ri[i, R_EPOCH]
+    reported = 0
+    for m in range(nb.shape[1]):
+        if nb[i, m, NB_ID] < 0 or not is_placed(nb[i, m, NB_STATE]):
+            continue
+        if nb[i, m, NB_EPOCH] != epoch or tick - nb[i, m, NB_LAST] > fresh:
+            continue
+        jx = nb[i, m, NB_TX]
+        jy = nb[i, m, NB_TY]
+        if direction_index(jx - x, jy - y) < 0:
+            continue
+        for k in range(6):
+            if (seen_dirs | reported) & (1 << k):
+                continue
+            kk = direction_index(x + DIR_X[k] - jx, y + DIR_Y[k] - jy)
+            if kk >= 0 and (nb[i, m, NB_MASK] >> kk) & 1:
+                reported |= 1 << k
+    return reported
 
 
 @njit
@@ -77,9 +106,13 @@ def placed_rule(i, tick, ri, nb, nb_dist, ci, cf):  # type: ignore[no-untyped-de
             any_active = True
             if nb[i, m, NB_TS] < ts:
                 lower_active = True
+    # A neighbour site counts when its holder is heard, or when a neighbour that hears the
+    # holder reports it (a holder placed a little too far to be heard is still there).
+    # Only direct observations are passed on (R_MASK), so no report outlives its source.
+    counted = seen_dirs | reported_dirs(i, tick, ri, nb, fresh, seen_dirs)
     count = 0
     for k in range(6):
-        if seen_dirs & (1 << k):
+        if counted & (1 << k):
             count += 1
     ri[i, R_COUNT] = count
     ri[i, R_MASK] = seen_dirs
