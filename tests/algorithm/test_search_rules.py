@@ -67,3 +67,23 @@ def test_the_window_widens_pair_and_balance_tolerances() -> None:
 def test_search_options_are_checked(field: str, value: str) -> None:
     with pytest.raises(EtswarmError, match=field):
         ETParams(**{field: value})
+
+
+def test_a_reused_table_row_keeps_nothing_of_its_previous_robot() -> None:
+    # Found on T split y=2: after a regeneration cleared the table, a row first filled by an
+    # election message still held the old robot's epoch and released count, and the stale
+    # count (24 of the old target) stopped every release for the new one.
+    from etswarm.algorithm.controller import table_slot
+    from etswarm.algorithm.memory import NB_EPOCH, NB_RELEASED
+
+    _, nb, _ = allocate(1)
+    nb[0, 0, NB_ID] = 5
+    nb[0, 0, NB_EPOCH] = 1
+    nb[0, 0, NB_RELEASED] = 24
+    nb[0, 0, NB_MASK] = 7
+    nb[0, :, NB_ID] = -1  # what adopting a new target does
+    assert table_slot(0, 9, nb) == -1  # row 0, created
+    assert nb[0, 0, NB_ID] == 9
+    assert nb[0, 0, NB_EPOCH] == -1
+    assert nb[0, 0, NB_RELEASED] == 0
+    assert nb[0, 0, NB_MASK] == 0

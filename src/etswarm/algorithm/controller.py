@@ -105,6 +105,12 @@ def table_slot(i, sender, nb):  # type: ignore[no-untyped-def]
     nb[i, row, NB_PREV] = -1
     nb[i, row, NB_STATE] = QUEUED
     nb[i, row, NB_EEPOCH] = -1
+    # Nothing of the row's previous robot may pass for this one's until its status is
+    # heard (an election or target message creates the row without one): no epoch yet,
+    # no released count, no occupancy bits.
+    nb[i, row, NB_EPOCH] = -1
+    nb[i, row, NB_RELEASED] = 0
+    nb[i, row, NB_MASK] = 0
     return -row - 1
 
 
