@@ -57,3 +57,14 @@ def test_apply_split_remove_kill() -> None:
     assert removed.tolist() == [0] and not world.present[0]
     killed = apply_damage(parse_damage("kill ids=1"), world, 40.0, stream(0, "damage"))
     assert killed.tolist() == [1] and world.present[1] and not world.alive[1]
+
+
+def test_mid_cuts_through_the_middle_of_the_robots() -> None:
+    spec = parse_damage("split y=mid")
+    assert (spec.region, spec.axis, spec.mid) == ("line", "y", True)
+    assert parse_damage("remove x>mid").mid
+    # Robots from x = 1 to 7 spacings: the middle is x = 4, so the three right of it move.
+    pos = np.array([[40.0 * k, 0.0] for k in range(1, 8)])
+    world = World.from_positions(pos, np.zeros(7))
+    moved = apply_damage(parse_damage("split x=mid"), world, 40.0, stream(0, "damage"))
+    assert moved.tolist() == [4, 5, 6]

@@ -21,6 +21,9 @@ def select(
     if spec.region in ("line", "half"):
         coord = xy[:, 0] if spec.axis == "x" else xy[:, 1]
         value = spec.values[0]
+        if spec.mid:
+            span = coord[present]
+            value = 0.5 * (span.min() + span.max()) if len(span) else 0.0
         inside = coord < value if spec.op == "<" else coord > value
     elif spec.region == "disc":
         cx, cy, r = spec.values

@@ -10,6 +10,8 @@ the lattice X direction, y up):
 - ``x=V`` / ``y=V`` (split only): the line x = V or y = V; the side with larger x (y)
   moves away.
 - ``x<V``, ``x>V``, ``y<V``, ``y>V``: a half-plane.
+- In both, ``V`` may be ``mid``: the middle of the present robots' extent along that
+  axis when the damage happens (``split x=mid`` cuts the shape through its middle).
 - ``disc=CX,CY,R``: a disc.
 - ``band=x,LO,HI`` / ``band=y,LO,HI``: the strip LO <= x (or y) <= HI.
 - ``random=F``: a random fraction F of the robots (damage random stream).
@@ -43,6 +45,8 @@ class DamageSpec:
         at_formed: True when the time counts from formation.
         at_s: seconds (from the start, or after formation when ``at_formed``).
         text: the specification as given.
+        mid: for line and half regions, the value is the middle of the present robots'
+            extent at damage time (``values`` then holds 0.0).
     """
 
     kind: str
@@ -53,6 +57,7 @@ class DamageSpec:
     at_formed: bool
     at_s: float
     text: str
+    mid: bool = False
 
 
 def _numbers(text: str, spec: str, count: int | None = None) -> tuple[float, ...]:
@@ -96,17 +101,19 @@ def parse_damage(spec: str) -> DamageSpec:
     if kind not in KINDS:
         raise EtswarmError(f"--damage {spec!r}: kind must be one of {', '.join(KINDS)}")
     at_formed, at_s = _parse_time(words[2], spec) if len(words) == 3 else (True, 0.0)
-    m = re.fullmatch(rf"([xy])([<>=])({_NUMBER})", region_text)
+    m = re.fullmatch(rf"([xy])([<>=])({_NUMBER}|mid)", region_text)
     if m:
-        axis, op, value = m.group(1), m.group(2), float(m.group(3))
+        axis, op = m.group(1), m.group(2)
+        mid = m.group(3) == "mid"
+        value = 0.0 if mid else float(m.group(3))
         if op == "=" and kind != "split":
             raise EtswarmError(f"--damage {spec!r}: a line x=V/y=V is for split; use x<V or x>V")
         if op != "=" and kind == "split":
-            raise EtswarmError(f"--damage {spec!r}: split takes a line, x=V or y=V")
+            raise EtswarmError(f"--damage {spec!r}: split takes a line, x=V or y=V (V a number or mid)")
         region = "line" if op == "=" else "half"
-        return DamageSpec(kind, region, axis, op, (value,), at_formed, at_s, spec)
+        return DamageSpec(kind, region, axis, op, (value,), at_formed, at_s, spec, mid)
     if kind == "split":
-        raise EtswarmError(f"--damage {spec!r}: split takes a line, x=V or y=V")
+        raise EtswarmError(f"--damage {spec!r}: split takes a line, x=V or y=V (V a number or mid)")
     key, sep, rest = region_text.partition("=")
     if not sep:
         raise EtswarmError(f"--damage {spec!r}: region {region_text!r} is not NAME=VALUES")
