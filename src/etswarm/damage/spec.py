@@ -109,7 +109,9 @@ def parse_damage(spec: str) -> DamageSpec:
         if op == "=" and kind != "split":
             raise EtswarmError(f"--damage {spec!r}: a line x=V/y=V is for split; use x<V or x>V")
         if op != "=" and kind == "split":
-            raise EtswarmError(f"--damage {spec!r}: split takes a line, x=V or y=V (V a number or mid)")
+            raise EtswarmError(
+                f"--damage {spec!r}: split takes a line, x=V or y=V (V a number or mid)"
+            )
         region = "line" if op == "=" else "half"
         return DamageSpec(kind, region, axis, op, (value,), at_formed, at_s, spec, mid)
     if kind == "split":
