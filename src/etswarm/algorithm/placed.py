@@ -48,6 +48,15 @@ from etswarm.algorithm.regeneration import start_election
 INACTIVE_PATIENCE_TICKS = 31 * 60
 
 
+@njit(inline="always")
+def bit_count(bits):  # type: ignore[no-untyped-def]
+    """Number of the six direction bits set in ``bits``."""
+    count = 0
+    for k in range(6):
+        count += (bits >> k) & 1
+    return count
+
+
 @njit
 def reported_dirs(i, tick, ri, nb, fresh, seen_dirs):  # type: ignore[no-untyped-def]
     """Bits k of robot i's neighbour sites it does not hear the holder of (not in
@@ -109,14 +118,13 @@ def placed_rule(i, tick, ri, nb, nb_dist, ci, cf):  # type: ignore[no-untyped-de
     # A neighbour site counts when its holder is heard, or when a neighbour that hears the
     # holder reports it (a holder placed a little too far to be heard is still there).
     # Only direct observations are passed on (R_MASK), so no report outlives its source.
-    counted = seen_dirs | reported_dirs(i, tick, ri, nb, fresh, seen_dirs)
-    count = 0
-    for k in range(6):
-        if counted & (1 << k):
-            count += 1
+    # (Held sites are gene sites, so with all NN heard there is nothing left to report.)
+    nn = ri[i, R_NN]
+    count = bit_count(seen_dirs)
+    if count < nn:
+        count = bit_count(seen_dirs | reported_dirs(i, tick, ri, nb, fresh, seen_dirs))
     ri[i, R_COUNT] = count
     ri[i, R_MASK] = seen_dirs
-    nn = ri[i, R_NN]
 
     if state == INACTIVE:
         if witnessed_stable:

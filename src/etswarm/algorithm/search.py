@@ -315,10 +315,10 @@ def find_site(  # type: ignore[no-untyped-def]
                     continue
                 # Keep the free sites reachable from outside; in a hole that is closed
                 # already, a robot that got in may take any site.
-                if open_from(i, cx, cy, 0, 0, False, nb, gene_flag, ci) and (
+                if (
                     encloses_a_site(i, cx, cy, nb, gene_flag, ci)
                     or closes_a_hole(i, cx, cy, nb, gene_flag, ci)
-                ):
+                ) and open_from(i, cx, cy, 0, 0, False, nb, gene_flag, ci):
                     continue
                 ruled_out_mirror = side == outer_side or site_taken(i, c2x, c2y, nb)
                 ok = True
@@ -497,12 +497,14 @@ def search_rule(i, tick, new_msgs, ri, nb, nb_dist, motor, gene_flag, gene_nn, c
             ri[i, R_CAND_X] = cx
             ri[i, R_CAND_Y] = cy
             return
-        recent = tick - steer_fresh
-        near, _, _, _ = find_site(
-            i, tick, recent, False, ref, orbit, nb, nb_dist, gene_flag, ci, cf, CREEP_TOL_SCALE, 0
-        )
-        if near:
-            ri[i, R_CREEP_UNTIL] = tick + CREEP_HOLD_TICKS
+        if ci[C_CREEP] == 1:
+            recent = tick - steer_fresh
+            near, _, _, _ = find_site(
+                i, tick, recent, False, ref, orbit, nb, nb_dist, gene_flag, ci, cf,
+                CREEP_TOL_SCALE, 0,
+            )
+            if near:
+                ri[i, R_CREEP_UNTIL] = tick + CREEP_HOLD_TICKS
     # Near a free site: stop-and-go, so that steering and the capture test use readings
     # taken where the robot is, not up to seconds ago.
     creep_stop = (tick + i) % CREEP_PERIOD_TICKS < CREEP_STOP_TICKS
