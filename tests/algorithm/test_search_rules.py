@@ -87,3 +87,24 @@ def test_a_reused_table_row_keeps_nothing_of_its_previous_robot() -> None:
     assert nb[0, 0, NB_EPOCH] == -1
     assert nb[0, 0, NB_RELEASED] == 0
     assert nb[0, 0, NB_MASK] == 0
+
+
+def test_the_papers_search_is_a_command_line_option() -> None:
+    import json
+
+    from click.testing import CliRunner
+
+    from etswarm.cli.run_command import run as run_command
+
+    args = ["triangle", "--seed", "3", "--max-time", "3600", "--json"]
+    paper = CliRunner().invoke(run_command, [*args, "--no-creep", "--orbit", "bounce"])
+    assert paper.exit_code == 0, paper.output
+    ours = CliRunner().invoke(run_command, args)
+    assert ours.exit_code == 0, ours.output
+    paper_summary = json.loads(paper.output)
+    ours_summary = json.loads(ours.output)
+    # Both search modes grow the triangle, by different paths.
+    assert paper_summary["formed"] and ours_summary["formed"]
+    assert paper_summary["formation_time_s"] != ours_summary["formation_time_s"]
+    bad = CliRunner().invoke(run_command, [*args, "--orbit", "left"])
+    assert bad.exit_code != 0 and "--orbit" in bad.output

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import json
+from dataclasses import replace
 from pathlib import Path
 
 import click
@@ -25,6 +26,13 @@ from etswarm.algorithm.layout import LAYOUTS
 @click.option("--census", type=click.Choice(("tree", "walk")), default="tree", show_default=True,
               help="How a remnant's Leader counts it: spanning tree, or the paper's walk "
                    "round the periphery.")
+@click.option("--orbit", type=click.Choice(("clockwise", "bounce")), default="clockwise",
+              show_default=True,
+              help="Searchers go round the whole group clockwise (the paper), or turn back "
+                   "where the shape meets the repository.")
+@click.option("--creep/--no-creep", default=True, show_default=True,
+              help="Searchers near a free site move stop-and-go (--no-creep: the paper's "
+                   "steady edge-following).")
 @click.option("--fit", is_flag=True, help="With fewer robots than cells, form scale(shape, N).")
 @click.option("--damage", "damage", multiple=True, metavar="SPEC",
               help="Damage 'KIND REGION [at=TIME]', e.g. 'split x=0' (repeatable).")
@@ -39,7 +47,8 @@ from etswarm.algorithm.layout import LAYOUTS
               help="Save PNGs at the start and at each event (into --out or ./snapshots).")
 @click.option("--json", "as_json", is_flag=True, help="Print only the JSON summary.")
 def run(shape: str, robots: int | None, seed: int, loss: float, noise: float, max_time: float,
-        layout: str, release_interval: float | None, census: str, fit: bool,
+        layout: str, release_interval: float | None, census: str, orbit: str, creep: bool,
+        fit: bool,
         damage: tuple[str, ...],
         out: Path | None, video: Path | None, fps: float, speedup: float, snapshots: bool,
         as_json: bool) -> None:
@@ -53,7 +62,9 @@ def run(shape: str, robots: int | None, seed: int, loss: float, noise: float, ma
         raise EtswarmError("--fps and --speedup must be > 0")
     if video is not None and video.suffix.lower() not in (".mp4", ".gif"):
         raise EtswarmError(f"--video {video}: the file must end in .mp4 or .gif")
-    et = ETParams() if release_interval is None else ETParams(release_interval_s=release_interval)
+    et = ETParams(orbit=orbit, creep="on" if creep else "off")
+    if release_interval is not None:
+        et = replace(et, release_interval_s=release_interval)
     config = RunConfig(shape=shape, robots=robots, seed=seed, loss=loss, noise_mm=noise,
                        max_time_s=max_time, layout=layout, fit=fit, damage=damage, et=et,
                        census=census)
