@@ -63,7 +63,9 @@ def test_the_window_widens_pair_and_balance_tolerances() -> None:
     assert not in_window(52.0, 40.0, 40.0, cf, 2.0)  # 12 mm off even when doubled
 
 
-@pytest.mark.parametrize(("field", "value"), [("creep", "maybe"), ("orbit", "left")])
+@pytest.mark.parametrize(
+    ("field", "value"), [("creep", "maybe"), ("orbit", "left"), ("second_ring", "yes")]
+)
 def test_search_options_are_checked(field: str, value: str) -> None:
     with pytest.raises(EtswarmError, match=field):
         ETParams(**{field: value})
@@ -97,7 +99,9 @@ def test_the_papers_search_is_a_command_line_option() -> None:
     from etswarm.cli.run_command import run as run_command
 
     args = ["triangle", "--seed", "3", "--max-time", "3600", "--json"]
-    paper = CliRunner().invoke(run_command, [*args, "--no-creep", "--orbit", "bounce"])
+    paper = CliRunner().invoke(
+        run_command, [*args, "--no-creep", "--orbit", "bounce", "--no-second-ring"]
+    )
     assert paper.exit_code == 0, paper.output
     ours = CliRunner().invoke(run_command, args)
     assert ours.exit_code == 0, ours.output
@@ -108,3 +112,61 @@ def test_the_papers_search_is_a_command_line_option() -> None:
     assert paper_summary["formation_time_s"] != ours_summary["formation_time_s"]
     bad = CliRunner().invoke(run_command, [*args, "--orbit", "left"])
     assert bad.exit_code != 0 and "--orbit" in bad.output
+
+
+def two_reference_table(second_ring: str, holder_heard: bool):  # type: ignore[no-untyped-def]
+    """Robot 0 hears A (tag (0, 0), Active, reporting its neighbour site (1, 1) held) and B
+    (tag (1, 2), Stable), both at d = 40 mm: A and B are sqrt(3) d apart and the sites next
+    to both are (0, 1) and (1, 1). With ``holder_heard`` it also hears the holder of (1, 1)."""
+    from etswarm.algorithm.memory import NB_LAST, NB_TS
+
+    gene = np.ones((7, 7), dtype=np.int64)  # tags -3..3: every site in the shape
+    ci, cf = ETParams(second_ring=second_ring).pack(31, gene_x0=-3, gene_y0=-3)
+    _, nb, nb_dist = allocate(1)
+    robots = [((0, 0), State.ACTIVE, 1 << RING.index((1, 1)))]
+    robots.append(((1, 2), State.STABLE, 0))
+    if holder_heard:
+        robots.append(((1, 1), State.STABLE, 0))
+    for slot, ((x, y), state, mask) in enumerate(robots):
+        nb[0, slot, NB_ID] = slot + 1
+        nb[0, slot, NB_STATE] = state
+        nb[0, slot, NB_TX] = x
+        nb[0, slot, NB_TY] = y
+        nb[0, slot, NB_MASK] = mask
+        nb[0, slot, NB_TS] = 1
+        nb[0, slot, NB_LAST] = 10
+        nb_dist[0, slot] = 40.0
+    return gene, ci, cf, nb, nb_dist
+
+
+def test_second_ring_pairs_find_the_site_between_them() -> None:
+    from etswarm.algorithm.search import find_site, second_ring_side
+
+    for q in range(6):
+        dx = RING[q][0] + RING[(q + 1) % 6][0]
+        dy = RING[q][1] + RING[(q + 1) % 6][1]
+        assert second_ring_side(dx, dy) == q
+    for dx, dy in [*RING, (2, 0), (0, 2), (2, 2), (0, 0)]:
+        assert second_ring_side(dx, dy) == -1
+    # (1, 1) is reported held, so the robot is on (0, 1); the paper's rule needs two
+    # lattice neighbours and finds nothing.
+    for option, expected in [("on", (True, 0, 1)), ("off", (False, 0, 0))]:
+        gene, ci, cf, nb, nb_dist = two_reference_table(option, holder_heard=False)
+        found, x, y, _ = find_site(0, 10, 0, False, -1, 0, nb, nb_dist, gene, ci, cf, 1.0, 3)
+        assert (found, x, y) == expected
+
+
+def test_a_site_whose_reported_neighbour_is_not_heard_is_refused_on_settling() -> None:
+    from etswarm.algorithm.search import find_site, reported_but_unheard
+
+    # A reports (1, 1) held, but nobody of (1, 1) is heard: standing on (0, 1) the robot
+    # would hear it at about d, so it is somewhere else. Settling (strict), it refuses.
+    gene, ci, cf, nb, nb_dist = two_reference_table("on", holder_heard=False)
+    assert reported_but_unheard(0, 0, 1, 0, nb)
+    found, *_ = find_site(0, 10, 0, True, -1, 0, nb, nb_dist, gene, ci, cf, 1.0, 3)
+    assert not found
+    # Once the holder of (1, 1) is heard too, the site is confirmed.
+    gene, ci, cf, nb, nb_dist = two_reference_table("on", holder_heard=True)
+    assert not reported_but_unheard(0, 0, 1, 0, nb)
+    found, x, y, _ = find_site(0, 10, 0, True, -1, 0, nb, nb_dist, gene, ci, cf, 1.0, 3)
+    assert (found, x, y) == (True, 0, 1)

@@ -30,7 +30,8 @@ C_CENSUS_WALK = 14  # 1: the Leader counts by walking round the remnant; 0: span
 C_TICKS_WALK_MAX = 15  # the census walk gives up after this long
 C_ORBIT_BOUNCE = 16  # 1: a searcher turns back where the shape ends and the repository begins
 C_CREEP = 17  # 1: a searcher near a free site moves stop-and-go
-N_CI = 18
+C_SECOND_RING = 18  # 1: two references sqrt(3) d apart also locate a site (between them)
+N_CI = 19
 
 F_SPACING = 0  # lattice spacing d
 F_PAIR_TOL = 1  # two references within this of d trigger a site candidate
@@ -93,6 +94,9 @@ class ETParams:
     #: A searcher near a free site stops and goes, so it sees the site with fresh readings
     #: ("on"), or passes at full speed as in the paper ("off").
     creep: str = "on"
+    #: Localise also from two placed robots of the second ring (sqrt(3) d apart, the site
+    #: between them) ("on"), or only from lattice neighbours as in the paper ("off").
+    second_ring: str = "on"
 
     def __post_init__(self) -> None:
         for f in fields(self):
@@ -100,7 +104,7 @@ class ETParams:
             if f.name == "census":
                 if value not in CENSUS_METHODS:
                     raise EtswarmError(f"census must be one of {CENSUS_METHODS}, got {value!r}")
-            elif f.name == "creep":
+            elif f.name in ("creep", "second_ring"):
                 if value not in ("on", "off"):
                     raise EtswarmError(f"{f.name} must be 'on' or 'off', got {value!r}")
             elif f.name == "orbit":
@@ -150,6 +154,7 @@ class ETParams:
         ci[C_TICKS_WALK_MAX] = ticks(self.census_walk_timeout_s)
         ci[C_ORBIT_BOUNCE] = 1 if self.orbit == "bounce" else 0
         ci[C_CREEP] = 1 if self.creep == "on" else 0
+        ci[C_SECOND_RING] = 1 if self.second_ring == "on" else 0
         cf = np.zeros(N_CF, dtype=np.float64)
         cf[F_SPACING] = self.spacing_mm
         cf[F_PAIR_TOL] = self.pair_tol_mm

@@ -59,6 +59,7 @@ from etswarm.algorithm.memory import (
 from etswarm.algorithm.params import (
     C_CREEP,
     C_ORBIT_BOUNCE,
+    C_SECOND_RING,
     C_TICKS_COOLDOWN,
     C_TICKS_MOVE_FRESH,
     C_TICKS_NB_FRESH,
@@ -140,6 +141,36 @@ def site_taken(i, x, y, nb):  # type: ignore[no-untyped-def]
 
 
 @njit
+def reported_but_unheard(i, cx, cy, since, nb):  # type: ignore[no-untyped-def]
+    """A neighbour site of (cx, cy) is reported held by a placed robot heard since tick
+    ``since``, yet robot i has heard no robot of that site since then. Its holder stands
+    about d from the site, so a robot truly at (cx, cy) hears it: robot i is elsewhere
+    (on the mirror site of its pair, or where the lattice has torn)."""
+    slots = nb.shape[1]
+    for k in range(6):
+        sx = cx + DIR_X[k]
+        sy = cy + DIR_Y[k]
+        reported = False
+        heard = False
+        for j in range(slots):
+            if nb[i, j, NB_ID] < 0 or not is_placed(nb[i, j, NB_STATE]):
+                continue
+            if nb[i, j, NB_LAST] < since:
+                continue
+            jx = nb[i, j, NB_TX]
+            jy = nb[i, j, NB_TY]
+            if jx == sx and jy == sy:
+                heard = True
+                break
+            q = direction_index(sx - jx, sy - jy)
+            if q >= 0 and (nb[i, j, NB_MASK] >> q) & 1:
+                reported = True
+        if reported and not heard:
+            return True
+    return False
+
+
+@njit
 def known_held(i, x, y, nb, cx, cy):  # type: ignore[no-untyped-def]
     """Site (x, y) is held, as robot i knows (or is the site (cx, cy) it would take)."""
     if x == cx and y == cy:
@@ -181,6 +212,17 @@ def in_window(dist_a, dist_b, d, cf, tol_scale):  # type: ignore[no-untyped-def]
         and abs(dist_b - d) <= pair_tol
         and abs(dist_a - dist_b) <= cf[F_BALANCE_TOL] * tol_scale
     )
+
+
+@njit(inline="always")
+def second_ring_side(dx, dy):  # type: ignore[no-untyped-def]
+    """For tags that differ by (dx, dy) = DIR[q] + DIR[q + 1] (the second ring, sqrt(3)
+    spacings apart), return q: the sites next to both are at DIR[q] and DIR[q + 1] from
+    the first; -1 for any other difference."""
+    for q in range(6):
+        if DIR_X[q] + DIR_X[(q + 1) % 6] == dx and DIR_Y[q] + DIR_Y[(q + 1) % 6] == dy:
+            return q
+    return -1
 
 
 @njit(inline="always")
@@ -271,6 +313,7 @@ def find_site(  # type: ignore[no-untyped-def]
     d = cf[F_SPACING]
     pair_tol = cf[F_PAIR_TOL] * tol_scale
     consist_tol = cf[F_CONSIST_TOL]
+    second_ring = ci[C_SECOND_RING]
     fresh = ci[C_TICKS_NB_FRESH]
     slots = nb.shape[1]
     best_err = FAR
@@ -292,21 +335,33 @@ def find_site(  # type: ignore[no-untyped-def]
             if not in_window(nb_dist[i, a], nb_dist[i, b], d, cf, tol_scale):
                 # Settle midway between the two references, not where the window opens.
                 continue
-            k = direction_index(nb[i, b, NB_TX] - ax, nb[i, b, NB_TY] - ay)
-            if k < 0:
-                continue
-            # Orbiting clockwise from the reference it followed towards the other one,
-            # the robot is on the outer side: left of a->b when it came from a.
+            dx = nb[i, b, NB_TX] - ax
+            dy = nb[i, b, NB_TY] - ay
+            k = direction_index(dx, dy)
             outer_side = -1
-            if nb[i, a, NB_ID] == ref_id:
-                outer_side = 0
-            elif nb[i, b, NB_ID] == ref_id:
-                outer_side = 1
-            if outer_side >= 0 and orbit == 1:
-                outer_side = 1 - outer_side  # anticlockwise: the mirror image
+            if k >= 0:
+                # Lattice neighbours: the two sites next to both flank the edge a-b.
+                s0 = (k + 5) % 6
+                s1 = (k + 1) % 6
+                # Orbiting clockwise from the reference it followed towards the other
+                # one, the robot is on the outer side: left of a->b when it came from a.
+                if nb[i, a, NB_ID] == ref_id:
+                    outer_side = 0
+                elif nb[i, b, NB_ID] == ref_id:
+                    outer_side = 1
+                if outer_side >= 0 and orbit == 1:
+                    outer_side = 1 - outer_side  # anticlockwise: the mirror image
+            else:
+                # Second ring (sqrt(3) d apart): the two sites next to both lie between
+                # them, each at d from both. Where growth has squeezed a and b together
+                # this pair still finds the site between them, just outside the notch.
+                s0 = second_ring_side(dx, dy)
+                if s0 < 0 or second_ring == 0:
+                    continue
+                s1 = (s0 + 1) % 6
             for side in range(2):
-                kk = (k + 5) % 6 if side == 0 else (k + 1) % 6
-                k2 = (k + 1) % 6 if side == 0 else (k + 5) % 6
+                kk = s0 if side == 0 else s1
+                k2 = s1 if side == 0 else s0
                 cx = ax + DIR_X[kk]
                 cy = ay + DIR_Y[kk]
                 c2x = ax + DIR_X[k2]
@@ -352,6 +407,8 @@ def find_site(  # type: ignore[no-untyped-def]
                         ts = nb[i, j, NB_TS]
                         if min_ts < 0 or ts < min_ts:
                             min_ts = ts
+                if ok and strict and reported_but_unheard(i, cx, cy, since, nb):
+                    ok = False
                 if ok and tol_scale > 1.0 and n_adjacent < wide_min:
                     ok = in_window(nb_dist[i, a], nb_dist[i, b], d, cf, 1.0)
                 if ok and ruled_out_mirror and min_ts >= 0 and err < best_err:

@@ -33,6 +33,9 @@ from etswarm.algorithm.layout import LAYOUTS
 @click.option("--creep/--no-creep", default=True, show_default=True,
               help="Searchers near a free site move stop-and-go (--no-creep: the paper's "
                    "steady edge-following).")
+@click.option("--second-ring/--no-second-ring", default=True, show_default=True,
+              help="Searchers also locate a site from two placed robots sqrt(3) d apart "
+                   "(--no-second-ring: only from lattice neighbours, as in the paper).")
 @click.option("--fit", is_flag=True, help="With fewer robots than cells, form scale(shape, N).")
 @click.option("--damage", "damage", multiple=True, metavar="SPEC",
               help="Damage 'KIND REGION [at=TIME]', e.g. 'split x=0' (repeatable).")
@@ -48,7 +51,7 @@ from etswarm.algorithm.layout import LAYOUTS
 @click.option("--json", "as_json", is_flag=True, help="Print only the JSON summary.")
 def run(shape: str, robots: int | None, seed: int, loss: float, noise: float, max_time: float,
         layout: str, release_interval: float | None, census: str, orbit: str, creep: bool,
-        fit: bool,
+        second_ring: bool, fit: bool,
         damage: tuple[str, ...],
         out: Path | None, video: Path | None, fps: float, speedup: float, snapshots: bool,
         as_json: bool) -> None:
@@ -62,7 +65,8 @@ def run(shape: str, robots: int | None, seed: int, loss: float, noise: float, ma
         raise EtswarmError("--fps and --speedup must be > 0")
     if video is not None and video.suffix.lower() not in (".mp4", ".gif"):
         raise EtswarmError(f"--video {video}: the file must end in .mp4 or .gif")
-    et = ETParams(orbit=orbit, creep="on" if creep else "off")
+    et = ETParams(orbit=orbit, creep="on" if creep else "off",
+                  second_ring="on" if second_ring else "off")
     if release_interval is not None:
         et = replace(et, release_interval_s=release_interval)
     config = RunConfig(shape=shape, robots=robots, seed=seed, loss=loss, noise_mm=noise,
