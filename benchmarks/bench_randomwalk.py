@@ -10,6 +10,7 @@ load average, since other jobs on the machine change the figures.
     .venv/bin/python benchmarks/bench_randomwalk.py                 # N = 100 ... 30 000
     .venv/bin/python benchmarks/bench_randomwalk.py -n 1000 -n 10000 --seconds 60
     .venv/bin/python benchmarks/bench_randomwalk.py --repeat 3   # best of 3 runs per N
+    .venv/bin/python benchmarks/bench_randomwalk.py --threads 2  # SimParams.threads = 2
 
 On a shared machine the figures swing by tens of percent with the other jobs; ``--repeat``
 keeps the fastest run of each size (every run simulates the same seed, so the same work).
@@ -27,9 +28,10 @@ import click
 from etswarm.sim import RandomWalk, SimParams, Simulator, arena_side_for, random_world
 
 
-def bench_one(n: int, seconds: float, seed: int) -> dict[str, float]:
-    """Run the benchmark for ``n`` robots; return its figures."""
-    params = SimParams(arena_mm=arena_side_for(n), loss=0.0, dist_noise_mm=0.0)
+def bench_one(n: int, seconds: float, seed: int, threads: int = 1) -> dict[str, float]:
+    """Run the benchmark for ``n`` robots on ``threads`` threads; return its figures."""
+    params = SimParams(arena_mm=arena_side_for(n), loss=0.0, dist_noise_mm=0.0,
+                       threads=threads)
     world = random_world(n, params, seed)
     sim = Simulator(world, RandomWalk(n), params, seed)  # kernel compiled/loaded here
     ticks = round(seconds * params.ticks_per_s)
@@ -44,6 +46,7 @@ def bench_one(n: int, seconds: float, seed: int) -> dict[str, float]:
     c = world.counter_dict()
     return {
         "robots": n,
+        "threads": threads,
         "ticks": done,
         "wall_s": wall,
         "cpu_s": cpu,
@@ -65,18 +68,21 @@ def bench_one(n: int, seconds: float, seed: int) -> dict[str, float]:
 @click.option("--seed", type=int, default=1, show_default=True)
 @click.option("--repeat", type=int, default=1, show_default=True,
               help="Runs per size; the fastest (wall clock) is reported.")
+@click.option("--threads", type=int, default=1, show_default=True,
+              help="SimParams.threads: threads the tick phases run on.")
 @click.option("--json", "json_out", type=click.Path(), default=None,
               help="Also write the figures to this JSON file.")
-def main(sizes: tuple[int, ...], seconds: float, seed: int, repeat: int,
+def main(sizes: tuple[int, ...], seconds: float, seed: int, repeat: int, threads: int,
          json_out: str | None) -> None:
     """Random-walk benchmark: robot-ticks per second for each N."""
     print(f"random walk, {seconds:g} s simulated, walls at 50 mm*sqrt(N), range 70 mm, "
-          f"no loss, no noise; {os.cpu_count()} CPUs")
+          f"no loss, no noise; {threads} thread(s), {os.cpu_count()} CPUs "
+          f"(cpu rate: robot-ticks per CPU second of all threads)")
     print(f"{'N':>7} {'ticks':>6} {'wall s':>8} {'M rt/s':>7} {'M rt/s cpu':>10} "
           f"{'ns/rt':>6} {'x real':>7} {'push/rt':>7}  load before/after")
     rows = []
     for n in sizes:
-        r = min((bench_one(n, seconds, seed) for _ in range(max(repeat, 1))),
+        r = min((bench_one(n, seconds, seed, threads) for _ in range(max(repeat, 1))),
                 key=lambda row: row["wall_s"])
         rows.append(r)
         print(f"{n:>7} {r['ticks']:>6} {r['wall_s']:>8.2f} {r['mrt_per_s_wall']:>7.2f} "

@@ -69,7 +69,38 @@ def run_ticks(n, tick0, cfg, grid, pos, heading, motor, led, alive, present, spe
     return n
 '''
 
-_loaded: dict[int, ModuleType] = {}
+_TEMPLATE_THREADED = '''"""etswarm threaded tick loop for controller {qualname}."""
+from numba import njit
+
+from etswarm.sim.parallel import (collide_phase_mt, grid_sync_flags, move_phase_mt,
+                                  radio_phase_mt)
+
+# controller_step is bound by etswarm.sim.kernel before this body runs.
+
+
+@njit(cache={cache})
+def run_ticks(n, tick0, cfg, grid, pos, heading, motor, led, alive, present, speed,
+              turn_rate, tx_phase, out_on, out_type, out_data, in_count, in_type, in_data,
+              in_dist, counters, flags, trig, rng_ctl, mem, scratch):
+    if n <= 0:
+        return 0
+    stop = mem[0]
+    grid_sync_flags(grid, pos, present, flags, scratch.robot_flag)
+    for k in range(n):
+        tick = tick0 + k
+        radio_phase_mt(tick, cfg, grid, pos, alive, present, tx_phase, out_on, out_type,
+                       out_data, in_count, in_type, in_data, in_dist, counters, scratch)
+        controller_step(tick, alive, in_count, in_type, in_data, in_dist, motor, led,
+                        out_on, out_type, out_data, mem, rng_ctl)
+        move_phase_mt(tick, cfg, grid, pos, heading, motor, alive, present, speed,
+                      turn_rate, flags, trig, scratch)
+        collide_phase_mt(cfg, grid, pos, present, motor, flags, counters, scratch)
+        if stop[0] != 0:
+            return k + 1
+    return n
+'''
+
+_loaded: dict[tuple[int, bool], ModuleType] = {}
 
 
 def kernel_dir() -> Path:
@@ -89,7 +120,7 @@ def kernel_dir() -> Path:
     raise OSError("no writable directory for etswarm kernels; set ETSWARM_KERNEL_DIR")
 
 
-def _source_hash(step_py: Any) -> str | None:
+def _source_hash(step_py: Any, template: str = _TEMPLATE) -> str | None:
     """Hash of the sources compiled into the kernel; None if the controller has no file."""
     try:
         src_file = inspect.getsourcefile(step_py)
@@ -98,7 +129,7 @@ def _source_hash(step_py: Any) -> str | None:
     if src_file is None or not os.path.isfile(src_file):
         return None
     digest = hashlib.sha256()
-    digest.update(_TEMPLATE.encode())
+    digest.update(template.encode())
     digest.update(numba.__version__.encode())
     sim_dir = Path(__file__).resolve().parent
     ctl_dir = Path(src_file).resolve().parent
@@ -110,21 +141,28 @@ def _source_hash(step_py: Any) -> str | None:
     return digest.hexdigest()[:16]
 
 
-def load_kernel(step: Any) -> Any:
-    """The compiled ``run_ticks`` for controller dispatcher ``step`` (see module doc)."""
-    key = id(step)
+def load_kernel(step: Any, threaded: bool = False) -> Any:
+    """The compiled ``run_ticks`` for controller dispatcher ``step`` (see module doc).
+
+    ``threaded``: the loop of the threaded phases (:mod:`etswarm.sim.parallel`), a kernel
+    of its own (file name ending ``_mt_<hash>``) with the arguments of that template.
+    """
+    key = (id(step), bool(threaded))
+    template = _TEMPLATE_THREADED if threaded else _TEMPLATE
     if key in _loaded:
         return _loaded[key].run_ticks
     py_func = getattr(step, "py_func", None)
     if py_func is None:
         raise TypeError("controller step must be an @njit function (numba dispatcher)")
-    digest = _source_hash(py_func)
+    digest = _source_hash(py_func, template)
     label = re.sub(r"[^0-9A-Za-z_]", "_", f"{py_func.__module__}_{py_func.__qualname__}")
-    source = _TEMPLATE.format(qualname=f"{py_func.__module__}.{py_func.__qualname__}",
+    if threaded:
+        label += "_mt"
+    source = template.format(qualname=f"{py_func.__module__}.{py_func.__qualname__}",
                               cache=digest is not None)
     if digest is None:
         folder = Path(tempfile.mkdtemp(prefix="etswarm-kernel-"))
-        name = f"_etswarm_kernel_{label}_{key:x}"
+        name = f"_etswarm_kernel_{label}_{id(step):x}"
     else:
         folder = kernel_dir()
         name = f"_etswarm_kernel_{label}_{digest}"

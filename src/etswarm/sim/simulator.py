@@ -22,6 +22,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Any
 
+import numba
 import numpy as np
 
 from etswarm.errors import EtswarmError
@@ -30,6 +31,14 @@ from etswarm.sim.collide import collide_phase
 from etswarm.sim.kernel import load_kernel
 from etswarm.sim.motion import move_phase
 from etswarm.sim.neighbours import Grid, grid_sync, make_grid
+from etswarm.sim.parallel import (
+    ThreadScratch,
+    collide_phase_mt,
+    grid_sync_flags,
+    make_scratch,
+    move_phase_mt,
+    radio_phase_mt,
+)
 from etswarm.sim.params import SimParams
 from etswarm.sim.radio import radio_phase
 from etswarm.sim.world import World
@@ -68,7 +77,9 @@ class Simulator:
 
     Streams: "motion" (motion noise), "radio" (loss and distance noise), "controller"
     (passed to the controller). The world's calibration and placement used children of
-    "motion", "radio" and "placement" when it was built.
+    "motion", "radio" and "placement" when it was built. With ``params.threads > 1`` the
+    phases run on threads (:mod:`etswarm.sim.parallel`) and draw motion and radio noise
+    from a counter-based hash keyed by one draw from the "threads" stream.
     """
 
     def __init__(self, world: World, controller: Any, params: SimParams | None = None,
@@ -94,6 +105,11 @@ class Simulator:
         self._dirty_flag = np.zeros(n, dtype=np.uint8)
         self._spare = np.zeros(n, dtype=np.int32)
         self._trig = np.full((n, 6), np.nan)  # motion's cached cos/sin (see move_phase)
+        self.threads = self.params.threads
+        self._scratch: ThreadScratch | None = None
+        if self.threads > 1:
+            key = int(stream(self.seed, "threads").integers(0, 2**63, dtype=np.int64))
+            self._scratch = make_scratch(n, self._threads_used(), key)
         self.fast = is_fast_controller(controller)
         if self.fast:
             mem = controller.mem
@@ -101,7 +117,7 @@ class Simulator:
                     or mem[0].dtype != np.int64 or mem[0].shape != (1,)):
                 raise TypeError("controller.mem must be a tuple whose element 0 is a (1,) "
                                 "int64 stop-flag array")
-            self._kernel = load_kernel(controller.step)
+            self._kernel = load_kernel(controller.step, threaded=self._scratch is not None)
             self._call_kernel(0)  # compile, or load from the disk cache, now
         elif not callable(getattr(controller, "step", None)):
             raise TypeError("controller needs a step(view) method or an njit step + mem")
@@ -125,9 +141,22 @@ class Simulator:
                 return k + 1
         return n
 
+    def _threads_used(self) -> int:
+        """Threads actually started: ``params.threads``, at most numba's thread count."""
+        return max(1, min(self.threads, numba.config.NUMBA_NUM_THREADS))
+
     def _call_kernel(self, n: int) -> int:
         """Run the compiled loop for ``n`` ticks (0: just make sure it is compiled)."""
         w = self.world
+        if self._scratch is not None:
+            with self._numba_threads():
+                return int(self._kernel(
+                    int(n), int(w.tick), self.cfg, self.grid, w.pos, w.heading, w.motor,
+                    w.led, w.alive, w.present, w.speed, w.turn_rate, w.tx_phase, w.out_on,
+                    w.out_type, w.out_data, w.in_count, w.in_type, w.in_data, w.in_dist,
+                    w.counters, self._dirty_flag, self._trig, self.rng_controller,
+                    self.controller.mem, self._scratch,
+                ))
         return int(self._kernel(
             int(n), int(w.tick), self.cfg, self.grid, w.pos, w.heading, w.motor, w.led,
             w.alive, w.present, w.speed, w.turn_rate, w.tx_phase, w.out_on, w.out_type,
@@ -137,18 +166,39 @@ class Simulator:
             self.rng_controller, self.controller.mem,
         ))
 
+    def _view(self) -> ControlView:
+        w = self.world
+        return ControlView(w.tick, w.alive, w.in_count, w.in_type, w.in_data, w.in_dist,
+                           w.motor, w.led, w.out_on, w.out_type, w.out_data,
+                           self.rng_controller)
+
+    def _numba_threads(self) -> _NumbaThreads:
+        return _NumbaThreads(int(self._scratch.parts[0]) if self._scratch is not None else 1)
+
     def _slow_tick(self) -> None:
         """One tick with a Python controller: the same phases as the compiled loop."""
         w = self.world
         g = self.grid
+        scr = self._scratch
+        if scr is not None:
+            with self._numba_threads():
+                grid_sync_flags(g, w.pos, w.present, self._dirty_flag, scr.robot_flag)
+                radio_phase_mt(w.tick, self.cfg, g, w.pos, w.alive, w.present, w.tx_phase,
+                               w.out_on, w.out_type, w.out_data, w.in_count, w.in_type,
+                               w.in_data, w.in_dist, w.counters, scr)
+                self.controller.step(self._view())
+                move_phase_mt(w.tick, self.cfg, g, w.pos, w.heading, w.motor, w.alive,
+                              w.present, w.speed, w.turn_rate, self._dirty_flag, self._trig,
+                              scr)
+                collide_phase_mt(self.cfg, g, w.pos, w.present, w.motor, self._dirty_flag,
+                                 w.counters, scr)
+            w.tick += 1
+            return
         n_dirty = grid_sync(g, w.pos, w.present, self._dirty, self._dirty_flag, g.state[2])
         radio_phase(w.tick, self.cfg, g, w.pos, w.alive, w.present, w.tx_phase, w.out_on,
                     w.out_type, w.out_data, w.in_count, w.in_type, w.in_data, w.in_dist,
                     w.counters, self.rng_radio)
-        view = ControlView(w.tick, w.alive, w.in_count, w.in_type, w.in_data, w.in_dist,
-                           w.motor, w.led, w.out_on, w.out_type, w.out_data,
-                           self.rng_controller)
-        self.controller.step(view)
+        self.controller.step(self._view())
         n_dirty = move_phase(self.cfg, g, w.pos, w.heading, w.motor, w.alive, w.present,
                              w.speed, w.turn_rate, self._dirty, self._dirty_flag, n_dirty,
                              self._trig, self.rng_motion)
@@ -159,3 +209,20 @@ class Simulator:
     def run_seconds(self, seconds: float) -> int:
         """Run ``seconds`` of simulated time (rounded to whole ticks); return ticks run."""
         return self.run_ticks(round(seconds * self.params.ticks_per_s))
+
+
+class _NumbaThreads:
+    """Context: numba runs parallel loops on ``count`` threads, restored on exit."""
+
+    def __init__(self, count: int) -> None:
+        self.count = count
+        self.before = 1
+
+    def __enter__(self) -> None:
+        self.before = numba.get_num_threads()
+        if self.before != self.count:
+            numba.set_num_threads(self.count)
+
+    def __exit__(self, *exc: object) -> None:
+        if self.before != self.count:
+            numba.set_num_threads(self.before)

@@ -1,0 +1,727 @@
+"""The tick phases on several threads (``SimParams.threads > 1``).
+
+The same model as the single-threaded phases (:mod:`etswarm.sim.radio`,
+:mod:`etswarm.sim.motion`, :mod:`etswarm.sim.collide`), split so that threads never write
+the same memory and the result does not depend on how many threads run or which thread
+does what: the same seed gives byte-identical results for every ``threads > 1`` (and for
+this code run on one thread).
+
+Randomness. A sequential stream cannot be shared by threads, so the threaded phases draw
+from a counter-based hash instead: every draw is a SplitMix64 hash of a 64-bit run key
+(drawn once from the seed's "threads" stream), the tick, the robot and, for the radio,
+the receiver and a salt naming the draw (loss, distance noise, speed noise, heading
+noise). Uniforms take the top 53 bits; normals use Box-Muller on two such uniforms.
+The controller still gets the sequential controller stream (it runs on one thread).
+
+Radio. Pass 1 (one part per thread, by sender index): each sender of this tick lists its
+receivers (slot order, as the serial radio visits them) with their measured distance,
+after the loss draw, in a (N, RX_MAX) buffer row of its own. Pass 2 (one part per thread,
+by receiver index): each thread walks all senders in index order and files the copies for
+its own receivers. So every inbox holds its copies in sender order, capped at K exactly as
+the serial radio does; with no loss and no noise the inboxes are identical to the serial
+radio's. A sender with more than RX_MAX receivers in range (only possible when many robots
+overlap) sends the whole tick through a one-thread version of the same procedure.
+
+Motion. Robots split by index into one part per thread; the arithmetic is the serial
+move's. Robots whose collision budget runs out are flagged for the collision phase.
+
+Collisions. The work list is a flag per grid slot (bit 1 or bit 2, alternating by pass:
+the pass examines slots carrying its bit and sets the other bit on robots it moves).
+The grid's cell rows are cut into at most ``2 * STRIP_PAIRS`` horizontal strips of at
+least 2 rows each, with about equal numbers of robots (a function of the grid alone,
+never of the thread count). An examined robot touches only slots in its own row and one
+row up or down (the query reach is below one cell and a robot stays inside its slack
+box), so strips 0, 2, 4, ... can be resolved at the same time, then strips 1, 3, 5, ...
+A strip examines its flagged slots in slot order with the serial pass's arithmetic. A
+robot pushed out of its slack box earlier in the pass is examined in the next pass
+(after the grid rebuild) instead of now. The order in which overlapping pairs are
+resolved differs from the single-threaded phase, so positions differ from threads=1
+once robots touch; the physics (overlap shares, still-robot grip, slop, pass limit,
+walls) is the same.
+"""
+
+from __future__ import annotations
+
+from typing import NamedTuple
+
+import numpy as np
+from numba import njit, prange
+
+from etswarm.sim.motion import clamp_to_arena
+from etswarm.sim.neighbours import (
+    G_CELL,
+    G_INV,
+    G_MARGIN,
+    G_OX,
+    G_OY,
+    cell_range,
+    grid_rebuild,
+)
+
+#: Strips per colour in the collision phase (strips = 2 * STRIP_PAIRS at most).
+STRIP_PAIRS = 4
+#: Receivers one sender can list per tick in the threaded radio's buffer.
+RX_MAX = 48
+
+_C1 = np.uint64(0x9E3779B97F4A7C15)
+_C2 = np.uint64(0xD1B54A32D192ED03)
+_C3 = np.uint64(0x8CB92BA72F3D8DD7)
+_M1 = np.uint64(0xBF58476D1CE4E5B9)
+_M2 = np.uint64(0x94D049BB133111EB)
+_S30 = np.uint64(30)
+_S27 = np.uint64(27)
+_S31 = np.uint64(31)
+_S11 = np.uint64(11)
+_TO_UNIT = 1.0 / 9007199254740992.0  # 2^-53
+
+#: hash salts naming the draws
+SALT_LOSS, SALT_NOISE_A, SALT_NOISE_B = 1, 2, 3
+SALT_SPEED_A, SALT_SPEED_B, SALT_HEAD_A, SALT_HEAD_B = 4, 5, 6, 7
+
+
+class ThreadScratch(NamedTuple):
+    """Work arrays of the threaded phases (N robots, T threads, P = STRIP_PAIRS).
+
+    ``key`` (1,) uint64 hash key; ``parts`` (1,) int64 T; ``rx_j`` (N, RX_MAX) int32 and
+    ``rx_d`` (N, RX_MAX) float32 mm: each sender's receivers and distances this tick;
+    ``rx_n`` (N,) int32: receivers listed per sender; ``senders`` (N,) int32: this
+    tick's senders, part by part; ``part_n`` (T, 4) int64 per-part counts; ``strips``
+    (2 P + 1,) int64 slot bounds of the strips; ``strip_out`` (2 P, 4) int64 per-strip
+    results; ``near`` (P, N) uint32 and ``near_d2`` (P, N) float64 per-strip scratch;
+    ``robot_flag`` (N,) uint8 flags by robot while the grid is rebuilt.
+    """
+
+    key: np.ndarray
+    parts: np.ndarray
+    rx_j: np.ndarray
+    rx_d: np.ndarray
+    rx_n: np.ndarray
+    senders: np.ndarray
+    part_n: np.ndarray
+    strips: np.ndarray
+    strip_out: np.ndarray
+    near: np.ndarray
+    near_d2: np.ndarray
+    robot_flag: np.ndarray
+
+
+def make_scratch(n: int, threads: int, key: int) -> ThreadScratch:
+    """Work arrays for ``n`` robots on ``threads`` threads with hash key ``key``."""
+    t = max(int(threads), 1)
+    return ThreadScratch(
+        key=np.array([key], dtype=np.uint64),
+        parts=np.array([t], dtype=np.int64),
+        rx_j=np.zeros((n, RX_MAX), dtype=np.int32),
+        rx_d=np.zeros((n, RX_MAX), dtype=np.float32),
+        rx_n=np.zeros(n, dtype=np.int32),
+        senders=np.zeros(n, dtype=np.int32),
+        part_n=np.zeros((t, 4), dtype=np.int64),
+        strips=np.zeros(2 * STRIP_PAIRS + 1, dtype=np.int64),
+        strip_out=np.zeros((2 * STRIP_PAIRS, 4), dtype=np.int64),
+        near=np.zeros((STRIP_PAIRS, n), dtype=np.uint32),
+        near_d2=np.zeros((STRIP_PAIRS, n)),
+        robot_flag=np.zeros(n, dtype=np.uint8),
+    )
+
+
+# ---------------------------------------------------------------- counter-based draws
+
+
+@njit(cache=True, inline="always")
+def _mix(z):
+    """SplitMix64 finaliser (uint64 -> uint64)."""
+    z = (z ^ (z >> _S30)) * _M1
+    z = (z ^ (z >> _S27)) * _M2
+    return z ^ (z >> _S31)
+
+
+@njit(cache=True, inline="always")
+def hash_unit(key, tick, a, b):
+    """Uniform draw in (0, 1] from (key, tick, a, b) (integers >= 0)."""
+    h = _mix(key ^ (np.uint64(tick) * _C1))
+    h = _mix(h ^ (np.uint64(a) * _C2))
+    h = _mix(h ^ (np.uint64(b) * _C3))
+    return (np.float64(h >> _S11) + 1.0) * _TO_UNIT
+
+
+@njit(cache=True, inline="always")
+def hash_normal(key, tick, a, b_first, b_second):
+    """Standard normal draw (Box-Muller) from two hashed uniforms."""
+    u1 = hash_unit(key, tick, a, b_first)
+    u2 = hash_unit(key, tick, a, b_second)
+    return np.sqrt(-2.0 * np.log(u1)) * np.cos(2.0 * np.pi * u2)
+
+
+@njit(cache=True)
+def hash_draws(key, tick, a, b, count):
+    """``count`` uniforms for (key, tick, a + k, b), k < count (for tests)."""
+    out = np.empty(count)
+    for k in range(count):
+        out[k] = hash_unit(key, tick, a + k, b)
+    return out
+
+
+# ---------------------------------------------------------------- grid upkeep
+
+
+@njit(cache=True)
+def rebuild_keeping_flags(grid, pos, present, flags, robot_flag):
+    """Rebuild the grid carrying the per-slot work flags ``flags`` to the new slots."""
+    n = pos.shape[0]
+    for i in range(n):
+        s = grid.slot[i]
+        robot_flag[i] = flags[s] if s >= 0 else 0
+    grid_rebuild(grid, pos, present)
+    flags[:] = 0
+    for i in range(n):
+        s = grid.slot[i]
+        if s >= 0:
+            flags[s] = robot_flag[i]
+
+
+@njit(cache=True)
+def grid_sync_flags(grid, pos, present, flags, robot_flag):
+    """:func:`etswarm.sim.neighbours.grid_sync` for the flag work list: after outside edits
+    the grid is rebuilt and the edited robots are flagged (bit 1) with budget 0."""
+    changed = grid.state[0] != 0
+    n = pos.shape[0]
+    edited = np.zeros(n, dtype=np.bool_)
+    for i in range(n):
+        s = grid.slot[i]
+        if present[i]:
+            if s >= 0 and pos[i, 0] == grid.sx[s] and pos[i, 1] == grid.sy[s]:
+                continue
+            changed = True
+            edited[i] = True
+        elif s >= 0:
+            changed = True
+    if changed:
+        rebuild_keeping_flags(grid, pos, present, flags, robot_flag)
+        for i in range(n):
+            if edited[i]:
+                s = grid.slot[i]
+                grid.budget[s] = 0.0
+                flags[s] |= 1
+
+
+# ---------------------------------------------------------------- radio
+
+
+@njit(cache=True, inline="always")
+def _list_receivers(i, row_out, x, y, tick, key, cfg, grid, alive, rx_j, rx_d, row_cap):
+    """Receivers of sender i at (x, y) (slot order) into rx_j[row_out], rx_d[row_out];
+    returns (listed, lost), listed = -1 when more than ``row_cap`` would be listed."""
+    start, sx, sy, sidx = grid.start, grid.sx, grid.sy, grid.sidx
+    rng_r = cfg.comm_range
+    r2 = rng_r * rng_r
+    reach = rng_r + grid.geom[G_MARGIN]
+    loss = cfg.loss
+    noise = cfg.dist_noise
+    nx = grid.dims[0]
+    cx0, cx1 = cell_range(x, reach, grid.geom[G_OX], grid.geom[G_INV], nx)
+    cy0, cy1 = cell_range(y, reach, grid.geom[G_OY], grid.geom[G_INV], grid.dims[1])
+    listed = 0
+    lost = 0
+    for cy in range(cy0, cy1 + 1):
+        row = cy * nx
+        for s in range(start[row + cx0], start[row + cx1 + 1]):
+            dx = sx[s] - x
+            dy = sy[s] - y
+            d2 = dx * dx + dy * dy
+            if d2 > r2:
+                continue
+            j = sidx[s]
+            if j == i or not alive[j]:
+                continue
+            if loss > 0.0 and hash_unit(key, tick, i, j * 8 + SALT_LOSS) <= loss:
+                lost += 1
+                continue
+            if listed >= row_cap:
+                return -1, lost
+            d = np.sqrt(d2)
+            if noise > 0.0:
+                d += noise * hash_normal(key, tick, i, j * 8 + SALT_NOISE_A,
+                                         j * 8 + SALT_NOISE_B)
+                if d < 0.0:
+                    d = 0.0
+            rx_j[row_out, listed] = j
+            rx_d[row_out, listed] = d
+            listed += 1
+    return listed, lost
+
+
+@njit(cache=True, inline="always")
+def _is_sender(i, phase, tx_phase, out_on, alive, present):
+    return tx_phase[i] == phase and out_on[i] and alive[i] and present[i]
+
+
+@njit(cache=True)
+def _radio_one_thread(tick, cfg, grid, pos, alive, present, tx_phase, out_on, out_type,
+                      out_data, in_count, in_type, in_data, in_dist, counters, scr):
+    """The threaded radio's result computed on one thread without the per-sender cap
+    (used when a sender has more than RX_MAX receivers)."""
+    n = pos.shape[0]
+    cap = in_type.shape[1]
+    key = scr.key[0]
+    phase = tick % cfg.tx_period
+    in_count[:] = 0
+    big = n  # a row of rx_j is RX_MAX long: list one sender at a time into a big row
+    row_j = np.empty((1, big), dtype=np.int32)
+    row_d = np.empty((1, big), dtype=np.float32)
+    sent = 0
+    delivered = 0
+    lost = 0
+    overflow = 0
+    for i in range(n):
+        if not _is_sender(i, phase, tx_phase, out_on, alive, present):
+            continue
+        sent += 1
+        listed, n_lost = _list_receivers(i, 0, pos[i, 0], pos[i, 1], tick, key, cfg, grid,
+                                         alive, row_j, row_d, big)
+        lost += n_lost
+        for k in range(listed):
+            j = row_j[0, k]
+            c = in_count[j]
+            if c >= cap:
+                overflow += 1
+                continue
+            in_type[j, c] = out_type[i]
+            in_data[j, c, :] = out_data[i, :]
+            in_dist[j, c] = row_d[0, k]
+            in_count[j] = c + 1
+            delivered += 1
+    counters[0] += sent
+    counters[1] += delivered
+    counters[2] += lost
+    counters[3] += overflow
+
+
+@njit(cache=True)
+def _radio_list_part(lo, hi, tick, cfg, grid, pos, alive, present, tx_phase, out_on, scr, p):
+    """Pass 1 for senders lo..hi-1: list receivers; part counts into scr.part_n[p]."""
+    phase = tick % cfg.tx_period
+    key = scr.key[0]
+    m = lo
+    lost = 0
+    bad = 0
+    for i in range(lo, hi):
+        if not _is_sender(i, phase, tx_phase, out_on, alive, present):
+            continue
+        scr.senders[m] = i
+        m += 1
+        listed, n_lost = _list_receivers(i, i, pos[i, 0], pos[i, 1], tick, key, cfg, grid,
+                                         alive, scr.rx_j, scr.rx_d, RX_MAX)
+        lost += n_lost
+        if listed < 0:
+            bad = 1
+            listed = 0
+        scr.rx_n[i] = listed
+    scr.part_n[p, 0] = m - lo
+    scr.part_n[p, 1] = lost
+    scr.part_n[p, 2] = bad
+
+
+@njit(cache=True)
+def _radio_file_part(lo, hi, n, parts, out_type, out_data, in_count, in_type, in_data,
+                     in_dist, scr, p):
+    """Pass 2 for receivers lo..hi-1: file every listed copy in sender order."""
+    cap = in_type.shape[1]
+    n_bytes = out_data.shape[1]
+    in_count[lo:hi] = 0
+    delivered = 0
+    overflow = 0
+    for q in range(parts):
+        first = n * q // parts
+        for m in range(first, first + scr.part_n[q, 0]):
+            i = scr.senders[m]
+            mtype = out_type[i]
+            for k in range(scr.rx_n[i]):
+                j = scr.rx_j[i, k]
+                if j < lo or j >= hi:
+                    continue
+                c = in_count[j]
+                if c >= cap:
+                    overflow += 1
+                    continue
+                in_type[j, c] = mtype
+                for b in range(n_bytes):
+                    in_data[j, c, b] = out_data[i, b]
+                in_dist[j, c] = scr.rx_d[i, k]
+                in_count[j] = c + 1
+                delivered += 1
+    scr.part_n[p, 2] = delivered
+    scr.part_n[p, 3] = overflow
+
+
+@njit(cache=True, parallel=True)
+def radio_phase_mt(tick, cfg, grid, pos, alive, present, tx_phase, out_on, out_type,
+                   out_data, in_count, in_type, in_data, in_dist, counters, scr):
+    """The radio phase on ``scr.parts[0]`` threads (arrays as in World; see module doc)."""
+    n = pos.shape[0]
+    parts = scr.parts[0]
+    for p in prange(parts):
+        _radio_list_part(n * p // parts, n * (p + 1) // parts, tick, cfg, grid, pos, alive,
+                         present, tx_phase, out_on, scr, p)
+    sent = 0
+    lost = 0
+    bad = 0
+    for p in range(parts):
+        sent += scr.part_n[p, 0]
+        lost += scr.part_n[p, 1]
+        bad += scr.part_n[p, 2]
+    if bad > 0:
+        _radio_one_thread(tick, cfg, grid, pos, alive, present, tx_phase, out_on, out_type,
+                          out_data, in_count, in_type, in_data, in_dist, counters, scr)
+        return
+    for q in prange(parts):
+        _radio_file_part(n * q // parts, n * (q + 1) // parts, n, parts, out_type, out_data,
+                         in_count, in_type, in_data, in_dist, scr, q)
+    delivered = 0
+    overflow = 0
+    for p in range(parts):
+        delivered += scr.part_n[p, 2]
+        overflow += scr.part_n[p, 3]
+    counters[0] += sent
+    counters[1] += delivered
+    counters[2] += lost
+    counters[3] += overflow
+
+
+# ---------------------------------------------------------------- motion
+
+
+@njit(cache=True)
+def _move_part(lo, hi, tick, cfg, grid, pos, heading, motor, alive, present, speed,
+               turn_rate, flags, trig, key):
+    """Move robots lo..hi-1 (the serial move's arithmetic); True if one left its box."""
+    dt = cfg.dt
+    r = cfg.radius
+    leg = cfg.leg_angle
+    cos_leg = np.cos(leg)
+    sin_leg = np.sin(leg)
+    walls = cfg.arena > 0.0
+    two_pi = 2.0 * np.pi
+    sx, sy, slot, sbx, sby = grid.sx, grid.sy, grid.slot, grid.sbx, grid.sby
+    budget = grid.budget
+    span = grid.geom[G_CELL] + 2.0 * grid.geom[G_MARGIN]
+    stale = False
+    for i in range(lo, hi):
+        m = motor[i]
+        if m == 0 or not alive[i] or not present[i]:
+            continue
+        h = heading[i]
+        if trig[i, 0] != h:
+            trig[i, 0] = h
+            trig[i, 1] = np.cos(h)
+            trig[i, 2] = np.sin(h)
+        ch = trig[i, 1]
+        sh = trig[i, 2]
+        if m == 1:
+            step = speed[i] * dt
+            if cfg.speed_noise > 0.0:
+                step *= 1.0 + cfg.speed_noise * hash_normal(key, tick, i, SALT_SPEED_A,
+                                                            SALT_SPEED_B)
+            x = pos[i, 0] + step * ch
+            y = pos[i, 1] + step * sh
+            h_new = h
+            travel = abs(step)
+        else:
+            rate = turn_rate[i]
+            if trig[i, 3] != rate:
+                trig[i, 3] = rate
+                trig[i, 4] = np.cos(rate * dt)
+                trig[i, 5] = np.sin(rate * dt)
+            cd = trig[i, 4]
+            sd = trig[i, 5]
+            dth = rate * dt
+            if m == 3:
+                sd = -sd
+                dth = -dth
+                sl = -sin_leg
+            else:
+                sl = sin_leg
+            ca = ch * cos_leg - sh * sl
+            sa = sh * cos_leg + ch * sl
+            ca2 = ca * cd - sa * sd
+            sa2 = sa * cd + ca * sd
+            x = pos[i, 0] + r * (ca - ca2)
+            y = pos[i, 1] + r * (sa - sa2)
+            h_new = h + dth
+            travel = r * abs(dth)
+            ch, sh = ch * cd - sh * sd, sh * cd + ch * sd
+        if cfg.heading_noise > 0.0:
+            h_new += cfg.heading_noise * hash_normal(key, tick, i, SALT_HEAD_A, SALT_HEAD_B)
+            ch = np.cos(h_new)
+            sh = np.sin(h_new)
+        if h_new > np.pi:
+            h_new -= two_pi
+        elif h_new <= -np.pi:
+            h_new += two_pi
+        if walls:
+            x = clamp_to_arena(x, r, cfg.arena)
+            y = clamp_to_arena(y, r, cfg.arena)
+        pos[i, 0] = x
+        pos[i, 1] = y
+        heading[i] = h_new
+        trig[i, 0] = h_new
+        trig[i, 1] = ch
+        trig[i, 2] = sh
+        s = slot[i]
+        sx[s] = x
+        sy[s] = y
+        bx = sbx[s]
+        by = sby[s]
+        if x < bx or x >= bx + span or y < by or y >= by + span:
+            stale = True
+        b = budget[s] - travel
+        budget[s] = b
+        if b <= 0.0:
+            flags[s] |= 1
+    return stale
+
+
+@njit(cache=True, parallel=True)
+def move_phase_mt(tick, cfg, grid, pos, heading, motor, alive, present, speed, turn_rate,
+                  flags, trig, scr):
+    """The move phase on ``scr.parts[0]`` threads; robots whose budget ran out get flag
+    bit 1 (``flags`` by slot)."""
+    n = pos.shape[0]
+    parts = scr.parts[0]
+    key = scr.key[0]
+    for p in prange(parts):
+        scr.part_n[p, 0] = _move_part(n * p // parts, n * (p + 1) // parts, tick, cfg, grid,
+                                      pos, heading, motor, alive, present, speed, turn_rate,
+                                      flags, trig, key)
+    stale = False
+    for p in range(parts):
+        stale |= scr.part_n[p, 0] != 0
+    if stale:
+        rebuild_keeping_flags(grid, pos, present, flags, scr.robot_flag)
+
+
+# ---------------------------------------------------------------- collisions
+
+
+@njit(cache=True)
+def strip_bounds(grid, strips):
+    """Cut the grid's rows into strips of >= 2 rows with about equal robot counts; write
+    their slot bounds to ``strips`` and return how many (<= 2 * STRIP_PAIRS)."""
+    nx = grid.dims[0]
+    ny = grid.dims[1]
+    start = grid.start
+    total = start[nx * ny]
+    n_strips = min(2 * STRIP_PAIRS, ny // 2)
+    if n_strips < 1:
+        n_strips = 1
+    strips[0] = 0
+    prev = 0
+    for k in range(1, n_strips):
+        target = total * k / n_strips
+        row = prev + 2
+        last = ny - 2 * (n_strips - k)
+        while row < last and start[row * nx] < target:
+            row += 1
+        strips[k] = start[row * nx]
+        prev = row
+    strips[n_strips] = total
+    return n_strips
+
+
+@njit(cache=True)
+def _collide_strip(lo, hi, cur_bit, nxt_bit, cfg, grid, pos, motor, flags, near, near_d2,
+                   out):
+    """One pass over the slots lo..hi-1 of a strip (see module doc); writes examined,
+    pushes, newly flagged slots and a stale flag to ``out`` (4,)."""
+    r = cfg.radius
+    still_share = cfg.still_share
+    contact = 2.0 * r
+    resolve2 = (contact - cfg.slop) * (contact - cfg.slop)
+    walls = cfg.arena > 0.0
+    arena = cfg.arena
+    start, sx, sy, sidx, sbx, sby = grid.start, grid.sx, grid.sy, grid.sidx, grid.sbx, grid.sby
+    margin = grid.geom[G_MARGIN]
+    reach = contact + 2.0 * margin
+    near2 = (contact + margin) * (contact + margin)
+    half_margin = 0.5 * margin
+    contact2 = contact * contact
+    share_k = 0.5 / (2.0 * contact + margin)
+    budget = grid.budget
+    span = grid.geom[G_CELL] + 2.0 * grid.geom[G_MARGIN]
+    inv = grid.geom[G_INV]
+    ox = grid.geom[G_OX]
+    oy = grid.geom[G_OY]
+    nx = grid.dims[0]
+    ny = grid.dims[1]
+    examined = 0
+    pushes = 0
+    n_next = 0
+    stale = False
+    for a in range(lo, hi):
+        f = flags[a]
+        if f & cur_bit == 0:
+            continue
+        f = f & ~cur_bit
+        xi = sx[a]
+        yi = sy[a]
+        if xi < sbx[a] or xi >= sbx[a] + span or yi < sby[a] or yi >= sby[a] + span:
+            # pushed out of its slack box earlier in this pass: its query could reach
+            # beyond the rows next to its own; examine it after the rebuild
+            stale = True
+            if f & nxt_bit == 0:
+                n_next += 1
+            flags[a] = f | nxt_bit
+            continue
+        flags[a] = f
+        examined += 1
+        moved_i = False
+        own = half_margin
+        cx0, cx1 = cell_range(xi, reach, ox, inv, nx)
+        cy0, cy1 = cell_range(yi, reach, oy, inv, ny)
+        n_near = 0
+        ua = np.uint64(a)
+        for cy in range(cy0, cy1 + 1, 2):
+            row = cy * nx
+            b0 = np.uint64(start[row + cx0])
+            len0 = np.uint64(start[row + cx1 + 1]) - b0
+            if cy + 1 <= cy1:
+                b1 = np.uint64(start[row + nx + cx0])
+                len1 = np.uint64(start[row + nx + cx1 + 1]) - b1
+            else:
+                b1 = np.uint64(0)
+                len1 = np.uint64(0)
+            gap = b1 - len0
+            for t in range(len0 + len1):
+                s = t + (b0 if t < len0 else gap)
+                dx = sx[s] - xi
+                dy = sy[s] - yi
+                d2 = dx * dx + dy * dy
+                near[n_near] = s
+                near_d2[n_near] = d2
+                n_near += (d2 < near2) & (s != ua)
+        n_over = 0
+        for q in range(n_near):
+            s = near[q]
+            d2 = near_d2[q]
+            share = max((d2 - contact2) * share_k, 0.0)
+            own = min(own, share)
+            budget[s] = min(budget[s], share)
+            near[n_over] = s
+            n_over += d2 < resolve2
+        for q in range(n_over):
+            s = near[q]
+            dx = sx[s] - xi
+            dy = sy[s] - yi
+            d2 = dx * dx + dy * dy
+            if d2 >= resolve2:
+                continue
+            d = np.sqrt(d2)
+            if d > 1e-9:
+                ux = dx / d
+                uy = dy / d
+            else:
+                ang = 2.399963229728653 * ((a + 1) * (s + 1) % 1024)
+                ux = np.cos(ang)
+                uy = np.sin(ang)
+            j = sidx[s]
+            share_j = 0.5
+            if (motor[sidx[a]] == 0) != (motor[j] == 0):
+                share_j = still_share if motor[j] == 0 else 1.0 - still_share
+            depth = contact - d
+            xi -= (1.0 - share_j) * depth * ux
+            yi -= (1.0 - share_j) * depth * uy
+            xj = sx[s] + share_j * depth * ux
+            yj = sy[s] + share_j * depth * uy
+            if walls:
+                xi = clamp_to_arena(xi, r, arena)
+                yi = clamp_to_arena(yi, r, arena)
+                xj = clamp_to_arena(xj, r, arena)
+                yj = clamp_to_arena(yj, r, arena)
+            sx[s] = xj
+            sy[s] = yj
+            pos[j, 0] = xj
+            pos[j, 1] = yj
+            budget[s] = 0.0
+            bx = sbx[s]
+            by = sby[s]
+            if xj < bx or xj >= bx + span or yj < by or yj >= by + span:
+                stale = True
+            fs = flags[s]
+            if fs & nxt_bit == 0:
+                flags[s] = fs | nxt_bit
+                n_next += 1
+            moved_i = True
+            pushes += 1
+        if not moved_i:
+            budget[a] = own
+        else:
+            i = sidx[a]
+            budget[a] = 0.0
+            sx[a] = xi
+            sy[a] = yi
+            pos[i, 0] = xi
+            pos[i, 1] = yi
+            if xi < sbx[a] or xi >= sbx[a] + span or yi < sby[a] or yi >= sby[a] + span:
+                stale = True
+            fa = flags[a]
+            if fa & nxt_bit == 0:
+                flags[a] = fa | nxt_bit
+                n_next += 1
+    out[0] = examined
+    out[1] = pushes
+    out[2] = n_next
+    out[3] = stale
+
+
+@njit(cache=True, parallel=True)
+def collide_phase_mt(cfg, grid, pos, present, motor, flags, counters, scr):
+    """The collision phase over strips on ``scr.parts[0]`` threads (see module doc).
+
+    ``flags`` (N,) uint8 by slot: bit 1 marks the robots to examine; on return only
+    robots left over by the pass limit are flagged (bit 1) and the grid is valid.
+    """
+    cur_bit = 1
+    passes = 0
+    pushes = 0
+    examined = 0
+    stale = False
+    pending = False
+    out = scr.strip_out
+    while passes < cfg.max_passes:
+        if stale:
+            rebuild_keeping_flags(grid, pos, present, flags, scr.robot_flag)
+            stale = False
+        n_strips = strip_bounds(grid, scr.strips)
+        nxt_bit = 3 - cur_bit
+        for colour in range(2):
+            n_col = (n_strips + 1 - colour) // 2
+            for q in prange(n_col):
+                k = 2 * q + colour
+                _collide_strip(scr.strips[k], scr.strips[k + 1], cur_bit, nxt_bit, cfg, grid,
+                               pos, motor, flags, scr.near[q], scr.near_d2[q], out[k])
+        ex = 0
+        pu = 0
+        nn = 0
+        for k in range(n_strips):
+            ex += out[k, 0]
+            pu += out[k, 1]
+            nn += out[k, 2]
+            stale |= out[k, 3] != 0
+        if ex == 0 and nn == 0:
+            pending = False
+            break
+        examined += ex
+        pushes += pu
+        passes += 1
+        cur_bit = nxt_bit
+        pending = nn > 0
+        if not pending:
+            break
+    if pending:
+        counters[5] += 1
+        if cur_bit == 2:
+            for s in range(flags.shape[0]):
+                flags[s] = flags[s] >> 1
+    if stale:
+        rebuild_keeping_flags(grid, pos, present, flags, scr.robot_flag)
+    counters[4] += pushes
+    counters[6] += examined
