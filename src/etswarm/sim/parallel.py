@@ -15,7 +15,8 @@ The controller still gets the sequential controller stream (it runs on one threa
 
 Radio. Pass 1 (one part per thread, by sender index): each sender of this tick lists its
 receivers (slot order, as the serial radio visits them) with their measured distance,
-after the loss draw, in a (N, RX_MAX) buffer row of its own. Pass 2 (one part per thread,
+after the loss draw, in a (N, RX_MAX) buffer row of its own (rows of one part's senders
+are consecutive). Pass 2 (one part per thread,
 by receiver index): each thread walks all senders in index order and files the copies for
 its own receivers. So every inbox holds its copies in sender order, capped at K exactly as
 the serial radio does; with no loss and no noise the inboxes are identical to the serial
@@ -47,7 +48,7 @@ from typing import NamedTuple
 import numpy as np
 from numba import njit, prange
 
-from etswarm.sim.motion import clamp_to_arena
+from etswarm.sim.motion import PREFETCH_AHEAD, clamp_to_arena
 from etswarm.sim.neighbours import (
     G_CELL,
     G_INV,
@@ -57,6 +58,7 @@ from etswarm.sim.neighbours import (
     cell_range,
     grid_rebuild,
 )
+from etswarm.sim.prefetch import prefetch
 
 #: Strips per colour in the collision phase (strips = 2 * STRIP_PAIRS at most).
 STRIP_PAIRS = 4
@@ -82,10 +84,11 @@ SALT_SPEED_A, SALT_SPEED_B, SALT_HEAD_A, SALT_HEAD_B = 4, 5, 6, 7
 class ThreadScratch(NamedTuple):
     """Work arrays of the threaded phases (N robots, T threads, P = STRIP_PAIRS).
 
-    ``key`` (1,) uint64 hash key; ``parts`` (1,) int64 T; ``rx_j`` (N, RX_MAX) int32 and
-    ``rx_d`` (N, RX_MAX) float32 mm: each sender's receivers and distances this tick;
-    ``rx_n`` (N,) int32: receivers listed per sender; ``senders`` (N,) int32: this
-    tick's senders, part by part; ``part_n`` (T, 4) int64 per-part counts; ``strips``
+    ``key`` (1,) uint64 hash key; ``parts`` (1,) int64 T; ``senders`` (N,) int32: this
+    tick's senders, part p's from row N p / T on; ``rx_j`` (N, RX_MAX) int32 and
+    ``rx_d`` (N, RX_MAX) float32 mm: receivers and distances of the sender in the same
+    row of ``senders``; ``rx_n`` (N,) int32: how many; ``part_n`` (T, 4) int64 per-part
+    counts; ``strips``
     (2 P + 1,) int64 slot bounds of the strips; ``strip_out`` (2 P, 4) int64 per-strip
     results; ``near`` (P, N) uint32 and ``near_d2`` (P, N) float64 per-strip scratch;
     ``robot_flag`` (N,) uint8 flags by robot while the grid is rebuilt.
@@ -308,14 +311,14 @@ def _radio_list_part(lo, hi, tick, cfg, grid, pos, alive, present, tx_phase, out
         if not _is_sender(i, phase, tx_phase, out_on, alive, present):
             continue
         scr.senders[m] = i
-        m += 1
-        listed, n_lost = _list_receivers(i, i, pos[i, 0], pos[i, 1], tick, key, cfg, grid,
+        listed, n_lost = _list_receivers(i, m, pos[i, 0], pos[i, 1], tick, key, cfg, grid,
                                          alive, scr.rx_j, scr.rx_d, RX_MAX)
         lost += n_lost
         if listed < 0:
             bad = 1
             listed = 0
-        scr.rx_n[i] = listed
+        scr.rx_n[m] = listed
+        m += 1
     scr.part_n[p, 0] = m - lo
     scr.part_n[p, 1] = lost
     scr.part_n[p, 2] = bad
@@ -335,8 +338,8 @@ def _radio_file_part(lo, hi, n, parts, out_type, out_data, in_count, in_type, in
         for m in range(first, first + scr.part_n[q, 0]):
             i = scr.senders[m]
             mtype = out_type[i]
-            for k in range(scr.rx_n[i]):
-                j = scr.rx_j[i, k]
+            for k in range(scr.rx_n[m]):
+                j = scr.rx_j[m, k]
                 if j < lo or j >= hi:
                     continue
                 c = in_count[j]
@@ -346,7 +349,7 @@ def _radio_file_part(lo, hi, n, parts, out_type, out_data, in_count, in_type, in
                 in_type[j, c] = mtype
                 for b in range(n_bytes):
                     in_data[j, c, b] = out_data[i, b]
-                in_dist[j, c] = scr.rx_d[i, k]
+                in_dist[j, c] = scr.rx_d[m, k]
                 in_count[j] = c + 1
                 delivered += 1
     scr.part_n[p, 2] = delivered
@@ -392,8 +395,9 @@ def radio_phase_mt(tick, cfg, grid, pos, alive, present, tx_phase, out_on, out_t
 
 @njit(cache=True)
 def _move_part(lo, hi, tick, cfg, grid, pos, heading, motor, alive, present, speed,
-               turn_rate, flags, trig, key):
-    """Move robots lo..hi-1 (the serial move's arithmetic); True if one left its box."""
+               turn_rate, flags, trig, key, out):
+    """Move robots lo..hi-1 (the serial move's arithmetic); ``out[0]`` = 1 if one left
+    its slack box, else 0."""
     dt = cfg.dt
     r = cfg.radius
     leg = cfg.leg_angle
@@ -406,6 +410,14 @@ def _move_part(lo, hi, tick, cfg, grid, pos, heading, motor, alive, present, spe
     span = grid.geom[G_CELL] + 2.0 * grid.geom[G_MARGIN]
     stale = False
     for i in range(lo, hi):
+        if i + PREFETCH_AHEAD < hi:
+            ahead = slot[i + PREFETCH_AHEAD]
+            prefetch(sx, ahead)
+            prefetch(sy, ahead)
+            prefetch(sbx, ahead)
+            prefetch(sby, ahead)
+            prefetch(budget, ahead)
+            prefetch(flags, ahead)
         m = motor[i]
         if m == 0 or not alive[i] or not present[i]:
             continue
@@ -477,7 +489,7 @@ def _move_part(lo, hi, tick, cfg, grid, pos, heading, motor, alive, present, spe
         budget[s] = b
         if b <= 0.0:
             flags[s] |= 1
-    return stale
+    out[0] = 1 if stale else 0
 
 
 @njit(cache=True, parallel=True)
@@ -489,9 +501,10 @@ def move_phase_mt(tick, cfg, grid, pos, heading, motor, alive, present, speed, t
     parts = scr.parts[0]
     key = scr.key[0]
     for p in prange(parts):
-        scr.part_n[p, 0] = _move_part(n * p // parts, n * (p + 1) // parts, tick, cfg, grid,
-                                      pos, heading, motor, alive, present, speed, turn_rate,
-                                      flags, trig, key)
+        # (results are written by the callee: an item assigned in a prange body to an
+        # array reached through the tuple was lost)
+        _move_part(n * p // parts, n * (p + 1) // parts, tick, cfg, grid, pos, heading,
+                   motor, alive, present, speed, turn_rate, flags, trig, key, scr.part_n[p])
     stale = False
     for p in range(parts):
         stale |= scr.part_n[p, 0] != 0
