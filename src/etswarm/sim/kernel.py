@@ -70,34 +70,75 @@ def run_ticks(n, tick0, cfg, grid, pos, heading, motor, led, alive, present, spe
 '''
 
 _TEMPLATE_THREADED = '''"""etswarm threaded tick loop for controller {qualname}."""
-from numba import njit
+from numba import njit, prange
 
-from etswarm.sim.parallel import (collide_phase_mt, grid_sync_flags, move_phase_mt,
-                                  radio_phase_mt)
+from etswarm.sim.parallel import (
+    CS_CONT, CS_DONE, CS_STOP, collide_after_pass, collide_begin, collide_end,
+    collide_strips, grid_sync_flags, move_finish, move_part, radio_count, radio_file_part,
+    radio_list_part,
+)
+from etswarm.sim.sync import atomic_load, barrier
 
 # controller_step is bound by etswarm.sim.kernel before this body runs.
 
 
 @njit(cache={cache})
+def thread_ticks(p, n, tick0, cfg, grid, pos, heading, motor, led, alive, present, speed,
+                 turn_rate, tx_phase, out_on, out_type, out_data, in_count, in_type, in_data,
+                 in_dist, counters, flags, trig, rng_ctl, mem, scratch):
+    parts = scratch.parts[0]
+    sync = scratch.sync
+    cs = scratch.cstate
+    for k in range(n):
+        tick = tick0 + k
+        radio_list_part(p, tick, cfg, grid, pos, alive, present, tx_phase, out_on, scratch)
+        barrier(sync, parts)
+        radio_file_part(p, tick, cfg, grid, pos, alive, present, tx_phase, out_on, out_type,
+                        out_data, in_count, in_type, in_data, in_dist, counters, scratch)
+        barrier(sync, parts)
+        if p == 0:
+            radio_count(counters, scratch)
+            controller_step(tick, alive, in_count, in_type, in_data, in_dist, motor, led,
+                            out_on, out_type, out_data, mem, rng_ctl)
+        barrier(sync, parts)
+        move_part(p, tick, cfg, grid, pos, heading, motor, alive, present, speed, turn_rate,
+                  flags, trig, scratch)
+        barrier(sync, parts)
+        if p == 0:
+            move_finish(grid, pos, present, flags, scratch)
+            collide_begin(grid, scratch)
+        barrier(sync, parts)
+        while atomic_load(cs, CS_CONT) != 0:
+            collide_strips(p, parts, 0, cfg, grid, pos, motor, flags, scratch)
+            barrier(sync, parts)
+            collide_strips(p, parts, 1, cfg, grid, pos, motor, flags, scratch)
+            barrier(sync, parts)
+            if p == 0:
+                collide_after_pass(cfg, grid, pos, present, flags, scratch)
+            barrier(sync, parts)
+        if p == 0:
+            collide_end(grid, pos, present, flags, counters, scratch)
+            cs[CS_STOP] = 1 if mem[0][0] != 0 else 0
+            cs[CS_DONE] = k + 1
+        barrier(sync, parts)
+        if atomic_load(cs, CS_STOP) != 0:
+            return
+    return
+
+
+@njit(cache={cache}, parallel=True)
 def run_ticks(n, tick0, cfg, grid, pos, heading, motor, led, alive, present, speed,
               turn_rate, tx_phase, out_on, out_type, out_data, in_count, in_type, in_data,
               in_dist, counters, flags, trig, rng_ctl, mem, scratch):
     if n <= 0:
         return 0
-    stop = mem[0]
     grid_sync_flags(grid, pos, present, flags, scratch.robot_flag)
-    for k in range(n):
-        tick = tick0 + k
-        radio_phase_mt(tick, cfg, grid, pos, alive, present, tx_phase, out_on, out_type,
-                       out_data, in_count, in_type, in_data, in_dist, counters, scratch)
-        controller_step(tick, alive, in_count, in_type, in_data, in_dist, motor, led,
-                        out_on, out_type, out_data, mem, rng_ctl)
-        move_phase_mt(tick, cfg, grid, pos, heading, motor, alive, present, speed,
-                      turn_rate, flags, trig, scratch)
-        collide_phase_mt(cfg, grid, pos, present, motor, flags, counters, scratch)
-        if stop[0] != 0:
-            return k + 1
-    return n
+    scratch.cstate[CS_DONE] = 0
+    for p in prange(scratch.parts[0]):
+        thread_ticks(p, n, tick0, cfg, grid, pos, heading, motor, led, alive, present, speed,
+                     turn_rate, tx_phase, out_on, out_type, out_data, in_count, in_type,
+                     in_data, in_dist, counters, flags, trig, rng_ctl, mem, scratch)
+    return scratch.cstate[CS_DONE]
 '''
 
 _loaded: dict[tuple[int, bool], ModuleType] = {}

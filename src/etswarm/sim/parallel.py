@@ -76,6 +76,12 @@ _S31 = np.uint64(31)
 _S11 = np.uint64(11)
 _TO_UNIT = 1.0 / 9007199254740992.0  # 2^-53
 
+#: columns of ThreadScratch.part_n
+PN_SENT, PN_LOST, PN_BAD, PN_DELIVERED, PN_OVERFLOW, PN_STALE = 0, 1, 2, 3, 4, 5
+#: entries of ThreadScratch.cstate
+CS_CUR, CS_PASSES, CS_PUSHES, CS_EXAMINED, CS_PENDING, CS_CONT, CS_STRIPS, CS_STALE = range(8)
+CS_STOP, CS_DONE = 8, 9
+
 #: hash salts naming the draws
 SALT_LOSS, SALT_NOISE_A, SALT_NOISE_B = 1, 2, 3
 SALT_SPEED_A, SALT_SPEED_B, SALT_HEAD_A, SALT_HEAD_B = 4, 5, 6, 7
@@ -87,9 +93,11 @@ class ThreadScratch(NamedTuple):
     ``key`` (1,) uint64 hash key; ``parts`` (1,) int64 T; ``senders`` (N,) int32: this
     tick's senders, part p's from row N p / T on; ``rx_j`` (N, RX_MAX) int32 and
     ``rx_d`` (N, RX_MAX) float32 mm: receivers and distances of the sender in the same
-    row of ``senders``; ``rx_n`` (N,) int32: how many; ``part_n`` (T, 4) int64 per-part
-    counts; ``strips``
-    (2 P + 1,) int64 slot bounds of the strips; ``strip_out`` (2 P, 4) int64 per-strip
+    row of ``senders``; ``rx_n`` (N,) int32: how many; ``part_n`` (T, 8) int64 per-part
+    counts (columns ``PN_*``); ``sync`` (2,) int64 the barrier's state
+    (:mod:`etswarm.sim.sync`); ``cstate`` (12,) int64 the collision phase's state
+    between passes and the tick loop's flags (``CS_*``); ``strips`` (2 P + 1,) int64 slot
+    bounds of the strips; ``strip_out`` (2 P, 4) int64 per-strip
     results; ``near`` (P, N) uint32 and ``near_d2`` (P, N) float64 per-strip scratch;
     ``robot_flag`` (N,) uint8 flags by robot while the grid is rebuilt.
     """
@@ -101,6 +109,8 @@ class ThreadScratch(NamedTuple):
     rx_n: np.ndarray
     senders: np.ndarray
     part_n: np.ndarray
+    sync: np.ndarray
+    cstate: np.ndarray
     strips: np.ndarray
     strip_out: np.ndarray
     near: np.ndarray
@@ -118,7 +128,9 @@ def make_scratch(n: int, threads: int, key: int) -> ThreadScratch:
         rx_d=np.zeros((n, RX_MAX), dtype=np.float32),
         rx_n=np.zeros(n, dtype=np.int32),
         senders=np.zeros(n, dtype=np.int32),
-        part_n=np.zeros((t, 4), dtype=np.int64),
+        part_n=np.zeros((t, 8), dtype=np.int64),
+        sync=np.zeros(2, dtype=np.int64),
+        cstate=np.zeros(12, dtype=np.int64),
         strips=np.zeros(2 * STRIP_PAIRS + 1, dtype=np.int64),
         strip_out=np.zeros((2 * STRIP_PAIRS, 4), dtype=np.int64),
         near=np.zeros((STRIP_PAIRS, n), dtype=np.uint32),
@@ -319,9 +331,9 @@ def _radio_list_part(lo, hi, tick, cfg, grid, pos, alive, present, tx_phase, out
             listed = 0
         scr.rx_n[m] = listed
         m += 1
-    scr.part_n[p, 0] = m - lo
-    scr.part_n[p, 1] = lost
-    scr.part_n[p, 2] = bad
+    scr.part_n[p, PN_SENT] = m - lo
+    scr.part_n[p, PN_LOST] = lost
+    scr.part_n[p, PN_BAD] = bad
 
 
 @njit(cache=True)
@@ -335,7 +347,7 @@ def _radio_file_part(lo, hi, n, parts, out_type, out_data, in_count, in_type, in
     overflow = 0
     for q in range(parts):
         first = n * q // parts
-        for m in range(first, first + scr.part_n[q, 0]):
+        for m in range(first, first + scr.part_n[q, PN_SENT]):
             i = scr.senders[m]
             mtype = out_type[i]
             for k in range(scr.rx_n[m]):
@@ -352,42 +364,69 @@ def _radio_file_part(lo, hi, n, parts, out_type, out_data, in_count, in_type, in
                 in_dist[j, c] = scr.rx_d[m, k]
                 in_count[j] = c + 1
                 delivered += 1
-    scr.part_n[p, 2] = delivered
-    scr.part_n[p, 3] = overflow
+    scr.part_n[p, PN_DELIVERED] = delivered
+    scr.part_n[p, PN_OVERFLOW] = overflow
+
+
+@njit(cache=True)
+def radio_bad(scr):
+    """True when a sender of this tick had more receivers than its buffer row holds."""
+    bad = 0
+    for p in range(scr.parts[0]):
+        bad += scr.part_n[p, PN_BAD]
+    return bad > 0
+
+
+@njit(cache=True)
+def radio_file_part(p, tick, cfg, grid, pos, alive, present, tx_phase, out_on, out_type,
+                    out_data, in_count, in_type, in_data, in_dist, counters, scr):
+    """Pass 2 of part ``p`` after every part's pass 1; if a buffer row overflowed, part 0
+    runs the whole tick's radio on its own instead (and counts it)."""
+    n = pos.shape[0]
+    parts = scr.parts[0]
+    if radio_bad(scr):
+        if p == 0:
+            _radio_one_thread(tick, cfg, grid, pos, alive, present, tx_phase, out_on,
+                              out_type, out_data, in_count, in_type, in_data, in_dist,
+                              counters, scr)
+        return
+    _radio_file_part(n * p // parts, n * (p + 1) // parts, n, parts, out_type, out_data,
+                     in_count, in_type, in_data, in_dist, scr, p)
+
+
+@njit(cache=True)
+def radio_count(counters, scr):
+    """Add the tick's radio counts of all parts to ``counters`` (unless the one-thread
+    radio ran and counted)."""
+    if radio_bad(scr):
+        return
+    for p in range(scr.parts[0]):
+        counters[0] += scr.part_n[p, PN_SENT]
+        counters[1] += scr.part_n[p, PN_DELIVERED]
+        counters[2] += scr.part_n[p, PN_LOST]
+        counters[3] += scr.part_n[p, PN_OVERFLOW]
+
+
+@njit(cache=True)
+def radio_list_part(p, tick, cfg, grid, pos, alive, present, tx_phase, out_on, scr):
+    """Pass 1 of part ``p`` (senders n p / T .. n (p + 1) / T - 1)."""
+    n = pos.shape[0]
+    parts = scr.parts[0]
+    _radio_list_part(n * p // parts, n * (p + 1) // parts, tick, cfg, grid, pos, alive,
+                     present, tx_phase, out_on, scr, p)
 
 
 @njit(cache=True, parallel=True)
 def radio_phase_mt(tick, cfg, grid, pos, alive, present, tx_phase, out_on, out_type,
                    out_data, in_count, in_type, in_data, in_dist, counters, scr):
     """The radio phase on ``scr.parts[0]`` threads (arrays as in World; see module doc)."""
-    n = pos.shape[0]
     parts = scr.parts[0]
     for p in prange(parts):
-        _radio_list_part(n * p // parts, n * (p + 1) // parts, tick, cfg, grid, pos, alive,
-                         present, tx_phase, out_on, scr, p)
-    sent = 0
-    lost = 0
-    bad = 0
-    for p in range(parts):
-        sent += scr.part_n[p, 0]
-        lost += scr.part_n[p, 1]
-        bad += scr.part_n[p, 2]
-    if bad > 0:
-        _radio_one_thread(tick, cfg, grid, pos, alive, present, tx_phase, out_on, out_type,
-                          out_data, in_count, in_type, in_data, in_dist, counters, scr)
-        return
+        radio_list_part(p, tick, cfg, grid, pos, alive, present, tx_phase, out_on, scr)
     for q in prange(parts):
-        _radio_file_part(n * q // parts, n * (q + 1) // parts, n, parts, out_type, out_data,
-                         in_count, in_type, in_data, in_dist, scr, q)
-    delivered = 0
-    overflow = 0
-    for p in range(parts):
-        delivered += scr.part_n[p, 2]
-        overflow += scr.part_n[p, 3]
-    counters[0] += sent
-    counters[1] += delivered
-    counters[2] += lost
-    counters[3] += overflow
+        radio_file_part(q, tick, cfg, grid, pos, alive, present, tx_phase, out_on, out_type,
+                        out_data, in_count, in_type, in_data, in_dist, counters, scr)
+    radio_count(counters, scr)
 
 
 # ---------------------------------------------------------------- motion
@@ -395,8 +434,8 @@ def radio_phase_mt(tick, cfg, grid, pos, alive, present, tx_phase, out_on, out_t
 
 @njit(cache=True)
 def _move_part(lo, hi, tick, cfg, grid, pos, heading, motor, alive, present, speed,
-               turn_rate, flags, trig, key, out):
-    """Move robots lo..hi-1 (the serial move's arithmetic); ``out[0]`` = 1 if one left
+               turn_rate, flags, trig, key, out, at):
+    """Move robots lo..hi-1 (the serial move's arithmetic); ``out[at]`` = 1 if one left
     its slack box, else 0."""
     dt = cfg.dt
     r = cfg.radius
@@ -489,7 +528,28 @@ def _move_part(lo, hi, tick, cfg, grid, pos, heading, motor, alive, present, spe
         budget[s] = b
         if b <= 0.0:
             flags[s] |= 1
-    out[0] = 1 if stale else 0
+    out[at] = 1 if stale else 0
+
+
+@njit(cache=True)
+def move_part(p, tick, cfg, grid, pos, heading, motor, alive, present, speed, turn_rate,
+              flags, trig, scr):
+    """Move robots n p / T .. n (p + 1) / T - 1; part_n[p, PN_STALE] = left a box."""
+    n = pos.shape[0]
+    parts = scr.parts[0]
+    _move_part(n * p // parts, n * (p + 1) // parts, tick, cfg, grid, pos, heading, motor,
+               alive, present, speed, turn_rate, flags, trig, scr.key[0], scr.part_n[p],
+               PN_STALE)
+
+
+@njit(cache=True)
+def move_finish(grid, pos, present, flags, scr):
+    """After every part moved: rebuild the grid if a robot left its slack box."""
+    stale = False
+    for p in range(scr.parts[0]):
+        stale |= scr.part_n[p, PN_STALE] != 0
+    if stale:
+        rebuild_keeping_flags(grid, pos, present, flags, scr.robot_flag)
 
 
 @njit(cache=True, parallel=True)
@@ -497,19 +557,10 @@ def move_phase_mt(tick, cfg, grid, pos, heading, motor, alive, present, speed, t
                   flags, trig, scr):
     """The move phase on ``scr.parts[0]`` threads; robots whose budget ran out get flag
     bit 1 (``flags`` by slot)."""
-    n = pos.shape[0]
-    parts = scr.parts[0]
-    key = scr.key[0]
-    for p in prange(parts):
-        # (results are written by the callee: an item assigned in a prange body to an
-        # array reached through the tuple was lost)
-        _move_part(n * p // parts, n * (p + 1) // parts, tick, cfg, grid, pos, heading,
-                   motor, alive, present, speed, turn_rate, flags, trig, key, scr.part_n[p])
-    stale = False
-    for p in range(parts):
-        stale |= scr.part_n[p, 0] != 0
-    if stale:
-        rebuild_keeping_flags(grid, pos, present, flags, scr.robot_flag)
+    for p in prange(scr.parts[0]):
+        move_part(p, tick, cfg, grid, pos, heading, motor, alive, present, speed, turn_rate,
+                  flags, trig, scr)
+    move_finish(grid, pos, present, flags, scr)
 
 
 # ---------------------------------------------------------------- collisions
@@ -685,6 +736,82 @@ def _collide_strip(lo, hi, cur_bit, nxt_bit, cfg, grid, pos, motor, flags, near,
     out[3] = stale
 
 
+@njit(cache=True)
+def collide_begin(grid, scr):
+    """Start a tick's collision phase (one thread, after the move)."""
+    cs = scr.cstate
+    cs[CS_CUR] = 1
+    cs[CS_PASSES] = 0
+    cs[CS_PUSHES] = 0
+    cs[CS_EXAMINED] = 0
+    cs[CS_PENDING] = 0
+    cs[CS_CONT] = 1
+    cs[CS_STALE] = 0
+    cs[CS_STRIPS] = strip_bounds(grid, scr.strips)
+
+
+@njit(cache=True)
+def collide_strips(p, parts, colour, cfg, grid, pos, motor, flags, scr):
+    """Thread ``p`` of ``parts`` resolves its strips of ``colour`` in this pass."""
+    cs = scr.cstate
+    n_strips = cs[CS_STRIPS]
+    cur_bit = cs[CS_CUR]
+    n_col = (n_strips + 1 - colour) // 2
+    for q in range(p, n_col, parts):
+        k = 2 * q + colour
+        _collide_strip(scr.strips[k], scr.strips[k + 1], cur_bit, 3 - cur_bit, cfg, grid,
+                       pos, motor, flags, scr.near[q], scr.near_d2[q], scr.strip_out[k])
+
+
+@njit(cache=True)
+def collide_after_pass(cfg, grid, pos, present, flags, scr):
+    """Sum a pass's strips and decide whether another pass runs (one thread); before
+    it, rebuild the grid if a robot left its slack box and cut new strips."""
+    cs = scr.cstate
+    out = scr.strip_out
+    ex = 0
+    pu = 0
+    nn = 0
+    for k in range(cs[CS_STRIPS]):
+        ex += out[k, 0]
+        pu += out[k, 1]
+        nn += out[k, 2]
+        if out[k, 3] != 0:
+            cs[CS_STALE] = 1
+    if ex == 0 and nn == 0:
+        cs[CS_PENDING] = 0
+        cs[CS_CONT] = 0
+        return
+    cs[CS_EXAMINED] += ex
+    cs[CS_PUSHES] += pu
+    cs[CS_PASSES] += 1
+    cs[CS_CUR] = 3 - cs[CS_CUR]
+    cs[CS_PENDING] = 1 if nn > 0 else 0
+    cs[CS_CONT] = 1 if nn > 0 and cs[CS_PASSES] < cfg.max_passes else 0
+    if cs[CS_CONT] != 0:
+        if cs[CS_STALE] != 0:
+            rebuild_keeping_flags(grid, pos, present, flags, scr.robot_flag)
+            cs[CS_STALE] = 0
+        cs[CS_STRIPS] = strip_bounds(grid, scr.strips)
+
+
+@njit(cache=True)
+def collide_end(grid, pos, present, flags, counters, scr):
+    """Finish a tick's collision phase (one thread): robots left over by the pass limit
+    keep flag bit 1, the grid is valid, counters are updated."""
+    cs = scr.cstate
+    if cs[CS_PENDING] != 0:
+        counters[5] += 1
+        if cs[CS_CUR] == 2:
+            for s in range(flags.shape[0]):
+                flags[s] = flags[s] >> 1
+    if cs[CS_STALE] != 0:
+        rebuild_keeping_flags(grid, pos, present, flags, scr.robot_flag)
+        cs[CS_STALE] = 0
+    counters[4] += cs[CS_PUSHES]
+    counters[6] += cs[CS_EXAMINED]
+
+
 @njit(cache=True, parallel=True)
 def collide_phase_mt(cfg, grid, pos, present, motor, flags, counters, scr):
     """The collision phase over strips on ``scr.parts[0]`` threads (see module doc).
@@ -692,49 +819,12 @@ def collide_phase_mt(cfg, grid, pos, present, motor, flags, counters, scr):
     ``flags`` (N,) uint8 by slot: bit 1 marks the robots to examine; on return only
     robots left over by the pass limit are flagged (bit 1) and the grid is valid.
     """
-    cur_bit = 1
-    passes = 0
-    pushes = 0
-    examined = 0
-    stale = False
-    pending = False
-    out = scr.strip_out
-    while passes < cfg.max_passes:
-        if stale:
-            rebuild_keeping_flags(grid, pos, present, flags, scr.robot_flag)
-            stale = False
-        n_strips = strip_bounds(grid, scr.strips)
-        nxt_bit = 3 - cur_bit
-        for colour in range(2):
-            n_col = (n_strips + 1 - colour) // 2
-            for q in prange(n_col):
-                k = 2 * q + colour
-                _collide_strip(scr.strips[k], scr.strips[k + 1], cur_bit, nxt_bit, cfg, grid,
-                               pos, motor, flags, scr.near[q], scr.near_d2[q], out[k])
-        ex = 0
-        pu = 0
-        nn = 0
-        for k in range(n_strips):
-            ex += out[k, 0]
-            pu += out[k, 1]
-            nn += out[k, 2]
-            stale |= out[k, 3] != 0
-        if ex == 0 and nn == 0:
-            pending = False
-            break
-        examined += ex
-        pushes += pu
-        passes += 1
-        cur_bit = nxt_bit
-        pending = nn > 0
-        if not pending:
-            break
-    if pending:
-        counters[5] += 1
-        if cur_bit == 2:
-            for s in range(flags.shape[0]):
-                flags[s] = flags[s] >> 1
-    if stale:
-        rebuild_keeping_flags(grid, pos, present, flags, scr.robot_flag)
-    counters[4] += pushes
-    counters[6] += examined
+    parts = scr.parts[0]
+    collide_begin(grid, scr)
+    while scr.cstate[CS_CONT] != 0:
+        for p in prange(parts):
+            collide_strips(p, parts, 0, cfg, grid, pos, motor, flags, scr)
+        for q in prange(parts):
+            collide_strips(q, parts, 1, cfg, grid, pos, motor, flags, scr)
+        collide_after_pass(cfg, grid, pos, present, flags, scr)
+    collide_end(grid, pos, present, flags, counters, scr)
