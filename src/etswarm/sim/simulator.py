@@ -175,13 +175,21 @@ class Simulator:
     def _numba_threads(self) -> _NumbaThreads:
         return _NumbaThreads(int(self._scratch.parts[0]) if self._scratch is not None else 1)
 
+    def _one_thread(self) -> _NumbaThreads:
+        """The slow path runs the threaded phases on one thread: a parallel loop per phase
+        and tick would cost more than it saves next to a Python controller, and results
+        do not depend on the thread count."""
+        assert self._scratch is not None
+        self._scratch.parts[0] = 1
+        return _NumbaThreads(1)
+
     def _slow_tick(self) -> None:
         """One tick with a Python controller: the same phases as the compiled loop."""
         w = self.world
         g = self.grid
         scr = self._scratch
         if scr is not None:
-            with self._numba_threads():
+            with self._one_thread():
                 grid_sync_flags(g, w.pos, w.present, self._dirty_flag, scr.robot_flag)
                 radio_phase_mt(w.tick, self.cfg, g, w.pos, w.alive, w.present, w.tx_phase,
                                w.out_on, w.out_type, w.out_data, w.in_count, w.in_type,
