@@ -196,3 +196,14 @@ def test_threads_parameter_is_checked() -> None:
         SimParams(threads=0)
     assert "threads" not in SimParams().to_dict()
     assert SimParams(threads=2).to_dict()["threads"] == 2
+
+
+def test_cli_threads_option() -> None:
+    from click.testing import CliRunner
+
+    from etswarm.cli.sim_command import sim
+
+    ok = CliRunner().invoke(sim, ["-n", "200", "-s", "5", "--threads", "2", "--no-progress"])
+    assert ok.exit_code == 0 and "robot-ticks/s" in ok.output
+    bad = CliRunner().invoke(sim, ["-n", "200", "--threads", "0", "--no-progress"])
+    assert bad.exit_code != 0 and "--threads" in str(bad.exception)
