@@ -74,10 +74,10 @@ from numba import njit, prange
 
 from etswarm.sim.parallel import (
     CS_CONT, CS_DONE, CS_STOP, collide_after_pass, collide_begin, collide_end,
-    collide_strips, grid_sync_flags, move_finish, move_part, radio_count, radio_file_part,
-    radio_list_part,
+    collide_strips_grab, grid_sync_flags, move_finish, move_part, radio_count,
+    radio_file_part, radio_list_part,
 )
-from etswarm.sim.sync import atomic_load, barrier
+from etswarm.sim.sync import arrive, atomic_load, release
 
 # controller_step is bound by etswarm.sim.kernel before this body runs.
 
@@ -86,41 +86,40 @@ from etswarm.sim.sync import atomic_load, barrier
 def thread_ticks(p, n, tick0, cfg, grid, pos, heading, motor, led, alive, present, speed,
                  turn_rate, tx_phase, out_on, out_type, out_data, in_count, in_type, in_data,
                  in_dist, counters, flags, trig, rng_ctl, mem, scratch):
+    # the last thread to reach a barrier does the one-thread work, then releases the rest
     parts = scratch.parts[0]
     sync = scratch.sync
     cs = scratch.cstate
     for k in range(n):
         tick = tick0 + k
         radio_list_part(p, tick, cfg, grid, pos, alive, present, tx_phase, out_on, scratch)
-        barrier(sync, parts)
+        if arrive(sync, parts):
+            release(sync)
         radio_file_part(p, tick, cfg, grid, pos, alive, present, tx_phase, out_on, out_type,
                         out_data, in_count, in_type, in_data, in_dist, counters, scratch)
-        barrier(sync, parts)
-        if p == 0:
+        if arrive(sync, parts):
             radio_count(counters, scratch)
             controller_step(tick, alive, in_count, in_type, in_data, in_dist, motor, led,
                             out_on, out_type, out_data, mem, rng_ctl)
-        barrier(sync, parts)
+            release(sync)
         move_part(p, tick, cfg, grid, pos, heading, motor, alive, present, speed, turn_rate,
                   flags, trig, scratch)
-        barrier(sync, parts)
-        if p == 0:
+        if arrive(sync, parts):
             move_finish(grid, pos, present, flags, scratch)
             collide_begin(grid, scratch)
-        barrier(sync, parts)
+            release(sync)
         while atomic_load(cs, CS_CONT) != 0:
-            collide_strips(p, parts, 0, cfg, grid, pos, motor, flags, scratch)
-            barrier(sync, parts)
-            collide_strips(p, parts, 1, cfg, grid, pos, motor, flags, scratch)
-            barrier(sync, parts)
-            if p == 0:
+            collide_strips_grab(p, 0, cfg, grid, pos, motor, flags, scratch)
+            if arrive(sync, parts):
+                release(sync)
+            collide_strips_grab(p, 1, cfg, grid, pos, motor, flags, scratch)
+            if arrive(sync, parts):
                 collide_after_pass(cfg, grid, pos, present, flags, scratch)
-            barrier(sync, parts)
-        if p == 0:
-            collide_end(grid, pos, present, flags, counters, scratch)
-            cs[CS_STOP] = 1 if mem[0][0] != 0 else 0
-            cs[CS_DONE] = k + 1
-        barrier(sync, parts)
+                if cs[CS_CONT] == 0:
+                    collide_end(grid, pos, present, flags, counters, scratch)
+                    cs[CS_STOP] = 1 if mem[0][0] != 0 else 0
+                    cs[CS_DONE] = k + 1
+                release(sync)
         if atomic_load(cs, CS_STOP) != 0:
             return
     return

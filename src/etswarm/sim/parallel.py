@@ -59,9 +59,10 @@ from etswarm.sim.neighbours import (
     grid_rebuild,
 )
 from etswarm.sim.prefetch import prefetch
+from etswarm.sim.sync import atomic_add
 
 #: Strips per colour in the collision phase (strips = 2 * STRIP_PAIRS at most).
-STRIP_PAIRS = 4
+STRIP_PAIRS = 8
 #: Receivers one sender can list per tick in the threaded radio's buffer.
 RX_MAX = 48
 
@@ -80,7 +81,7 @@ _TO_UNIT = 1.0 / 9007199254740992.0  # 2^-53
 PN_SENT, PN_LOST, PN_BAD, PN_DELIVERED, PN_OVERFLOW, PN_STALE = 0, 1, 2, 3, 4, 5
 #: entries of ThreadScratch.cstate
 CS_CUR, CS_PASSES, CS_PUSHES, CS_EXAMINED, CS_PENDING, CS_CONT, CS_STRIPS, CS_STALE = range(8)
-CS_STOP, CS_DONE = 8, 9
+CS_STOP, CS_DONE, CS_GRAB0, CS_GRAB1 = 8, 9, 10, 11
 
 #: hash salts naming the draws
 SALT_LOSS, SALT_NOISE_A, SALT_NOISE_B = 1, 2, 3
@@ -98,7 +99,7 @@ class ThreadScratch(NamedTuple):
     (:mod:`etswarm.sim.sync`); ``cstate`` (12,) int64 the collision phase's state
     between passes and the tick loop's flags (``CS_*``); ``strips`` (2 P + 1,) int64 slot
     bounds of the strips; ``strip_out`` (2 P, 4) int64 per-strip
-    results; ``near`` (P, N) uint32 and ``near_d2`` (P, N) float64 per-strip scratch;
+    results; ``near`` (T, N) uint32 and ``near_d2`` (T, N) float64 per-thread scratch;
     ``robot_flag`` (N,) uint8 flags by robot while the grid is rebuilt.
     """
 
@@ -133,8 +134,8 @@ def make_scratch(n: int, threads: int, key: int) -> ThreadScratch:
         cstate=np.zeros(12, dtype=np.int64),
         strips=np.zeros(2 * STRIP_PAIRS + 1, dtype=np.int64),
         strip_out=np.zeros((2 * STRIP_PAIRS, 4), dtype=np.int64),
-        near=np.zeros((STRIP_PAIRS, n), dtype=np.uint32),
-        near_d2=np.zeros((STRIP_PAIRS, n)),
+        near=np.zeros((t, n), dtype=np.uint32),
+        near_d2=np.zeros((t, n)),
         robot_flag=np.zeros(n, dtype=np.uint8),
     )
 
@@ -748,11 +749,13 @@ def collide_begin(grid, scr):
     cs[CS_CONT] = 1
     cs[CS_STALE] = 0
     cs[CS_STRIPS] = strip_bounds(grid, scr.strips)
+    cs[CS_GRAB0] = 0
+    cs[CS_GRAB1] = 0
 
 
 @njit(cache=True)
 def collide_strips(p, parts, colour, cfg, grid, pos, motor, flags, scr):
-    """Thread ``p`` of ``parts`` resolves its strips of ``colour`` in this pass."""
+    """Thread ``p`` of ``parts`` resolves strips ``p``, ``p + parts``, ... of ``colour``."""
     cs = scr.cstate
     n_strips = cs[CS_STRIPS]
     cur_bit = cs[CS_CUR]
@@ -760,7 +763,23 @@ def collide_strips(p, parts, colour, cfg, grid, pos, motor, flags, scr):
     for q in range(p, n_col, parts):
         k = 2 * q + colour
         _collide_strip(scr.strips[k], scr.strips[k + 1], cur_bit, 3 - cur_bit, cfg, grid,
-                       pos, motor, flags, scr.near[q], scr.near_d2[q], scr.strip_out[k])
+                       pos, motor, flags, scr.near[p], scr.near_d2[p], scr.strip_out[k])
+
+
+@njit(cache=True)
+def collide_strips_grab(p, colour, cfg, grid, pos, motor, flags, scr):
+    """Thread ``p`` resolves strips of ``colour`` taken one at a time from a shared
+    counter until none is left (the threads that finish first take more)."""
+    cs = scr.cstate
+    n_strips = cs[CS_STRIPS]
+    cur_bit = cs[CS_CUR]
+    n_col = (n_strips + 1 - colour) // 2
+    q = atomic_add(cs, CS_GRAB0 + colour, 1)
+    while q < n_col:
+        k = 2 * q + colour
+        _collide_strip(scr.strips[k], scr.strips[k + 1], cur_bit, 3 - cur_bit, cfg, grid,
+                       pos, motor, flags, scr.near[p], scr.near_d2[p], scr.strip_out[k])
+        q = atomic_add(cs, CS_GRAB0 + colour, 1)
 
 
 @njit(cache=True)
@@ -793,6 +812,8 @@ def collide_after_pass(cfg, grid, pos, present, flags, scr):
             rebuild_keeping_flags(grid, pos, present, flags, scr.robot_flag)
             cs[CS_STALE] = 0
         cs[CS_STRIPS] = strip_bounds(grid, scr.strips)
+        cs[CS_GRAB0] = 0
+        cs[CS_GRAB1] = 0
 
 
 @njit(cache=True)

@@ -19,6 +19,7 @@ Two kinds of controller plug in:
 
 from __future__ import annotations
 
+import time
 from dataclasses import dataclass
 from typing import Any
 
@@ -110,6 +111,7 @@ class Simulator:
         if self.threads > 1:
             key = int(stream(self.seed, "threads").integers(0, 2**63, dtype=np.int64))
             self._scratch = make_scratch(n, self._threads_used(), key)
+            self._chooser = ThreadChooser(self._threads_used())
         self.fast = is_fast_controller(controller)
         if self.fast:
             mem = controller.mem
@@ -149,14 +151,7 @@ class Simulator:
         """Run the compiled loop for ``n`` ticks (0: just make sure it is compiled)."""
         w = self.world
         if self._scratch is not None:
-            with self._numba_threads():
-                return int(self._kernel(
-                    int(n), int(w.tick), self.cfg, self.grid, w.pos, w.heading, w.motor,
-                    w.led, w.alive, w.present, w.speed, w.turn_rate, w.tx_phase, w.out_on,
-                    w.out_type, w.out_data, w.in_count, w.in_type, w.in_data, w.in_dist,
-                    w.counters, self._dirty_flag, self._trig, self.rng_controller,
-                    self.controller.mem, self._scratch,
-                ))
+            return self._call_threaded(n)
         return int(self._kernel(
             int(n), int(w.tick), self.cfg, self.grid, w.pos, w.heading, w.motor, w.led,
             w.alive, w.present, w.speed, w.turn_rate, w.tx_phase, w.out_on, w.out_type,
@@ -165,6 +160,30 @@ class Simulator:
             self.rng_radio,
             self.rng_controller, self.controller.mem,
         ))
+
+    def _call_threaded(self, n: int) -> int:
+        """Run the threaded loop for ``n`` ticks in calls of about SUB_CALL_S seconds each,
+        on the thread count that is fastest now (see :class:`ThreadChooser`)."""
+        w = self.world
+        scr = self._scratch
+        assert scr is not None
+        done = 0
+        while True:
+            step = min(n - done, self._chooser.ticks_per_call)
+            scr.parts[0] = self._chooser.pick()
+            t0 = time.perf_counter()
+            with self._numba_threads():
+                ran = int(self._kernel(
+                    int(step), int(w.tick + done), self.cfg, self.grid, w.pos, w.heading,
+                    w.motor, w.led, w.alive, w.present, w.speed, w.turn_rate, w.tx_phase,
+                    w.out_on, w.out_type, w.out_data, w.in_count, w.in_type, w.in_data,
+                    w.in_dist, w.counters, self._dirty_flag, self._trig, self.rng_controller,
+                    self.controller.mem, scr,
+                ))
+            self._chooser.record(int(scr.parts[0]), ran, time.perf_counter() - t0)
+            done += ran
+            if done >= n or ran < step:
+                return done
 
     def _view(self) -> ControlView:
         w = self.world
@@ -234,3 +253,55 @@ class _NumbaThreads:
     def __exit__(self, *exc: object) -> None:
         if self.before != self.count:
             numba.set_num_threads(self.before)
+
+
+class ThreadChooser:
+    """Picks how many threads each call of the threaded loop runs on: ``most`` or 1.
+
+    Results do not depend on the count, only the speed does: on a machine whose cores are
+    busy with other work, threads that wait for each other at every phase can be slower
+    than one. Calls are sized to about ``SUB_CALL_S`` seconds; the count not in use is
+    tried now and then (after 4, 8, ... 64 calls while it keeps losing) and the faster
+    one (seconds per tick, averaged over its recent calls) is used.
+    """
+
+    SUB_CALL_S = 0.05
+
+    def __init__(self, most: int) -> None:
+        self.most = most
+        self.ticks_per_call = 16
+        self.sec_per_tick: dict[int, float | None] = {most: None, 1: None}
+        self.current = most
+        self.gap = 4
+        self.since_try = 0
+        self.trying = False
+
+    def pick(self) -> int:
+        """Thread count for the next call."""
+        if self.most == 1:
+            return 1
+        other = 1 if self.current == self.most else self.most
+        self.trying = self.since_try >= self.gap or (
+            self.sec_per_tick[self.current] is not None and self.sec_per_tick[other] is None
+            and self.since_try >= 1)
+        return other if self.trying else self.current
+
+    def record(self, threads: int, ticks: int, seconds: float) -> None:
+        """The last call ran ``ticks`` ticks on ``threads`` threads in ``seconds``."""
+        if ticks <= 0:
+            return
+        per_tick = seconds / ticks
+        old = self.sec_per_tick[threads]
+        self.sec_per_tick[threads] = per_tick if old is None else 0.5 * (old + per_tick)
+        target = max(1, int(self.SUB_CALL_S / max(per_tick, 1e-9)))
+        self.ticks_per_call = min(max(target, 1), 1 << 20)
+        if not self.trying:
+            self.since_try += 1
+            return
+        self.since_try = 0
+        mine = self.sec_per_tick[self.current]
+        if mine is not None and self.sec_per_tick[threads] < mine:  # type: ignore[operator]
+            self.current = threads
+            self.gap = 4
+        else:
+            self.gap = min(2 * self.gap, 64)

@@ -72,6 +72,29 @@ def sched_yield(typingctx):
 
 
 @njit(cache=True)
+def arrive(sync, threads):
+    """Barrier whose last thread to arrive is let through alone: it gets True and must
+    call :func:`release` (after doing work no other thread may overlap); the others
+    get False once it has. Saves a second barrier around one-thread work."""
+    generation = atomic_load(sync, 1)
+    if atomic_add(sync, 0, 1) == threads - 1:
+        atomic_add(sync, 0, -threads)
+        return True
+    spins = 0
+    while atomic_load(sync, 1) == generation:
+        spins += 1
+        if spins > SPINS_BEFORE_YIELD:
+            sched_yield()
+    return False
+
+
+@njit(cache=True)
+def release(sync):
+    """Let the threads waiting in :func:`arrive` go on."""
+    atomic_add(sync, 1, 1)
+
+
+@njit(cache=True)
 def barrier(sync, threads):
     """Wait until all ``threads`` threads have called this (see module doc)."""
     generation = atomic_load(sync, 1)
