@@ -17,6 +17,7 @@ from etswarm.errors import EtswarmError
 from etswarm.sim import FORWARD, RandomWalk, SimParams, Simulator, World, random_world
 from etswarm.sim.controllers.randomwalk import randomwalk_step
 from etswarm.sim.parallel import hash_draws
+from etswarm.sim.simulator import ThreadChooser
 
 
 def digest(world: World) -> str:
@@ -40,9 +41,8 @@ def run_randomwalk(params: SimParams, n: int, ticks: int, seed: int,
                    parts: int | None = None) -> tuple[World, Simulator]:
     world = random_world(n, params, seed)
     sim = Simulator(world, RandomWalk(n), params, seed)
-    if parts is not None:  # run the threaded algorithm on fewer threads
-        assert sim._scratch is not None
-        sim._scratch.parts[0] = parts
+    if parts is not None:  # run the threaded algorithm on this many threads
+        sim._chooser = ThreadChooser(parts)
     done = 0
     while done < ticks:  # several calls: the host/kernel hand-over is part of the test
         done += sim.run_ticks(min(97, ticks - done))
@@ -74,7 +74,7 @@ def test_threads_one_gives_the_results_from_before_threads_existed() -> None:
 
 def test_threads_are_deterministic_and_independent_of_the_thread_count() -> None:
     params = noisy_params(threads=2)
-    a, _ = run_randomwalk(params, 250, 400, seed=5)
+    a, _ = run_randomwalk(params, 250, 400, seed=5, parts=2)
     b, _ = run_randomwalk(params, 250, 400, seed=5)
     c, _ = run_randomwalk(params, 250, 400, seed=5, parts=1)
     assert digest(a) == digest(b) == digest(c)
@@ -207,3 +207,17 @@ def test_cli_threads_option() -> None:
     assert ok.exit_code == 0 and "robot-ticks/s" in ok.output
     bad = CliRunner().invoke(sim, ["-n", "200", "--threads", "0", "--no-progress"])
     assert bad.exit_code != 0 and "--threads" in str(bad.exception)
+
+
+def test_thread_chooser_falls_back_to_one_thread_when_that_is_faster() -> None:
+    chooser = ThreadChooser(2)
+    for _ in range(200):
+        threads = chooser.pick()
+        chooser.record(threads, 100, 0.3 if threads == 2 else 0.1)
+    assert chooser.current == 1 and chooser.ticks_on[1] > 10 * chooser.ticks_on[2]
+    for _ in range(400):  # the machine got quiet: back to two
+        threads = chooser.pick()
+        chooser.record(threads, 100, 0.05 if threads == 2 else 0.1)
+    assert chooser.current == 2
+    fixed = ThreadChooser(2, adaptive=False)
+    assert all(fixed.pick() == 2 for _ in range(50))

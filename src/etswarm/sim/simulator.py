@@ -262,13 +262,16 @@ class ThreadChooser:
     busy with other work, threads that wait for each other at every phase can be slower
     than one. Calls are sized to about ``SUB_CALL_S`` seconds; the count not in use is
     tried now and then (after 4, 8, ... 64 calls while it keeps losing) and the faster
-    one (seconds per tick, averaged over its recent calls) is used.
+    one (seconds per tick, averaged over its recent calls) is used. ``adaptive=False``
+    always uses ``most``. ``ticks_on`` counts the ticks run on each count.
     """
 
     SUB_CALL_S = 0.05
 
-    def __init__(self, most: int) -> None:
+    def __init__(self, most: int, adaptive: bool = True) -> None:
         self.most = most
+        self.adaptive = adaptive
+        self.ticks_on: dict[int, int] = {most: 0, 1: 0}
         self.ticks_per_call = 16
         self.sec_per_tick: dict[int, float | None] = {most: None, 1: None}
         self.current = most
@@ -278,8 +281,8 @@ class ThreadChooser:
 
     def pick(self) -> int:
         """Thread count for the next call."""
-        if self.most == 1:
-            return 1
+        if self.most == 1 or not self.adaptive:
+            return self.most
         other = 1 if self.current == self.most else self.most
         self.trying = self.since_try >= self.gap or (
             self.sec_per_tick[self.current] is not None and self.sec_per_tick[other] is None
@@ -290,6 +293,7 @@ class ThreadChooser:
         """The last call ran ``ticks`` ticks on ``threads`` threads in ``seconds``."""
         if ticks <= 0:
             return
+        self.ticks_on[threads] = self.ticks_on.get(threads, 0) + ticks
         per_tick = seconds / ticks
         old = self.sec_per_tick[threads]
         self.sec_per_tick[threads] = per_tick if old is None else 0.5 * (old + per_tick)
