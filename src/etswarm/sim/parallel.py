@@ -30,9 +30,13 @@ Collisions. The work list is a flag per grid slot (bit 1 or bit 2, alternating b
 the pass examines slots carrying its bit and sets the other bit on robots it moves).
 The grid's cell rows are cut into at most ``2 * STRIP_PAIRS`` horizontal strips of at
 least 2 rows each, with about equal numbers of robots (a function of the grid alone,
-never of the thread count). An examined robot touches only slots in its own row and one
-row up or down (the query reach is below one cell and a robot stays inside its slack
-box), so strips 0, 2, 4, ... can be resolved at the same time, then strips 1, 3, 5, ...
+never of the thread count). The threaded simulator files robots in cells of
+2 r + 3 margin (the one-threaded one in cells of 4 r + 4 margin): a collision query
+reaches 2 r + 2 margin from a centre that lies at most a margin outside its cell, so an
+examined robot touches only slots in its own row and one row up or down, and strips 0,
+2, 4, ... can be resolved at the same time, then strips 1, 3, 5, ... (threads take the
+strips of a colour one at a time from a shared counter). The smaller cells also make
+the queries scan fewer robots.
 A strip examines its flagged slots in slot order with the serial pass's arithmetic. A
 robot pushed out of its slack box earlier in the pass is examined in the next pass
 (after the grid rebuild) instead of now. The order in which overlapping pairs are
@@ -99,7 +103,8 @@ class ThreadScratch(NamedTuple):
     (:mod:`etswarm.sim.sync`); ``cstate`` (12,) int64 the collision phase's state
     between passes and the tick loop's flags (``CS_*``); ``strips`` (2 P + 1,) int64 slot
     bounds of the strips; ``strip_out`` (2 P, 4) int64 per-strip
-    results; ``near`` (T, N) uint32 and ``near_d2`` (T, N) float64 per-thread scratch;
+    results; ``near`` (T, N) uint32, ``near_d2`` (T, N) float64 and ``work`` (T, N) int32
+    per-thread scratch of the collision phase;
     ``robot_flag`` (N,) uint8 flags by robot while the grid is rebuilt.
     """
 
@@ -116,6 +121,7 @@ class ThreadScratch(NamedTuple):
     strip_out: np.ndarray
     near: np.ndarray
     near_d2: np.ndarray
+    work: np.ndarray
     robot_flag: np.ndarray
 
 
@@ -136,6 +142,7 @@ def make_scratch(n: int, threads: int, key: int) -> ThreadScratch:
         strip_out=np.zeros((2 * STRIP_PAIRS, 4), dtype=np.int64),
         near=np.zeros((t, n), dtype=np.uint32),
         near_d2=np.zeros((t, n)),
+        work=np.zeros((t, n), dtype=np.int32),
         robot_flag=np.zeros(n, dtype=np.uint8),
     )
 
@@ -594,7 +601,7 @@ def strip_bounds(grid, strips):
 
 @njit(cache=True)
 def _collide_strip(lo, hi, cur_bit, nxt_bit, cfg, grid, pos, motor, flags, near, near_d2,
-                   out):
+                   work, out):
     """One pass over the slots lo..hi-1 of a strip (see module doc); writes examined,
     pushes, newly flagged slots and a stale flag to ``out`` (4,)."""
     r = cfg.radius
@@ -621,11 +628,15 @@ def _collide_strip(lo, hi, cur_bit, nxt_bit, cfg, grid, pos, motor, flags, near,
     pushes = 0
     n_next = 0
     stale = False
+    # the strip's flagged slots in slot order, gathered without branching on the flags
+    # (only this strip examines or flags them while it runs)
+    n_work = 0
     for a in range(lo, hi):
-        f = flags[a]
-        if f & cur_bit == 0:
-            continue
-        f = f & ~cur_bit
+        work[n_work] = a
+        n_work += (flags[a] & cur_bit) != 0
+    for w in range(n_work):
+        a = work[w]
+        f = flags[a] & ~cur_bit
         xi = sx[a]
         yi = sy[a]
         if xi < sbx[a] or xi >= sbx[a] + span or yi < sby[a] or yi >= sby[a] + span:
@@ -763,7 +774,8 @@ def collide_strips(p, parts, colour, cfg, grid, pos, motor, flags, scr):
     for q in range(p, n_col, parts):
         k = 2 * q + colour
         _collide_strip(scr.strips[k], scr.strips[k + 1], cur_bit, 3 - cur_bit, cfg, grid,
-                       pos, motor, flags, scr.near[p], scr.near_d2[p], scr.strip_out[k])
+                       pos, motor, flags, scr.near[p], scr.near_d2[p], scr.work[p],
+                       scr.strip_out[k])
 
 
 @njit(cache=True)
@@ -778,7 +790,8 @@ def collide_strips_grab(p, colour, cfg, grid, pos, motor, flags, scr):
     while q < n_col:
         k = 2 * q + colour
         _collide_strip(scr.strips[k], scr.strips[k + 1], cur_bit, 3 - cur_bit, cfg, grid,
-                       pos, motor, flags, scr.near[p], scr.near_d2[p], scr.strip_out[k])
+                       pos, motor, flags, scr.near[p], scr.near_d2[p], scr.work[p],
+                       scr.strip_out[k])
         q = atomic_add(cs, CS_GRAB0 + colour, 1)
 
 
