@@ -15,7 +15,17 @@ name carries a hash of the sources that end up inside the kernel: every ``.py`` 
 ``etswarm/sim`` and of the directory holding the controller's module, plus the numba
 version. Editing any of them gives a new kernel file (old ones can be deleted freely).
 A controller defined without a source file (an interactive session) is compiled without
-caching. The directory is ``$ETSWARM_KERNEL_DIR`` if set, else ``~/.cache/etswarm/kernels``
+caching.
+
+With ``SimParams.threads > 1`` the simulator asks for the threaded loop
+(``load_kernel(step, threaded=True)``, its own file ``..._mt_<hash>.py`` and cache): a
+``parallel=True`` function that starts one thread per ``prange`` iteration once per call;
+each thread runs every tick's phases on its share (:mod:`etswarm.sim.parallel`), the
+threads meet at spin-then-yield barriers (:mod:`etswarm.sim.sync`), and the last thread
+to arrive runs the one-thread work (the controller, grid rebuilds, pass bookkeeping).
+The default loop is generated and compiled exactly as before.
+
+The directory is ``$ETSWARM_KERNEL_DIR`` if set, else ``~/.cache/etswarm/kernels``
 (or a temporary directory when that is not writable).
 """
 

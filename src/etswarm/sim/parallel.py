@@ -31,7 +31,7 @@ the pass examines slots carrying its bit and sets the other bit on robots it mov
 The grid's cell rows are cut into at most ``2 * STRIP_PAIRS`` horizontal strips of at
 least 2 rows each, with about equal numbers of robots (a function of the grid alone,
 never of the thread count). The threaded simulator files robots in cells of
-2 r + 3 margin (the one-threaded one in cells of 4 r + 4 margin): a collision query
+2 r + 3.1 margin (the one-threaded one in cells of 4 r + 4 margin): a collision query
 reaches 2 r + 2 margin from a centre that lies at most a margin outside its cell, so an
 examined robot touches only slots in its own row and one row up or down, and strips 0,
 2, 4, ... can be resolved at the same time, then strips 1, 3, 5, ... (threads take the

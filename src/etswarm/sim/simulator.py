@@ -103,7 +103,7 @@ class Simulator:
         margin = max(1.0, 0.15 * r)  # grid slack; collision budgets are up to margin / 2
         # threads > 1: smaller cells (see etswarm.sim.parallel); the one-thread phases'
         # loops are written for cells of at least 4 r + 4 margin
-        cell = 4.0 * r + 4.0 * margin if self.params.threads == 1 else 2.0 * r + 3.0 * margin
+        cell = 4.0 * r + 4.0 * margin if self.params.threads == 1 else 2.0 * r + 3.1 * margin
         self.grid: Grid = make_grid(n, cell, margin)
         self._dirty = np.zeros(n, dtype=np.int32)
         self._dirty_flag = np.zeros(n, dtype=np.uint8)
