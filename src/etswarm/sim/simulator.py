@@ -172,8 +172,8 @@ class Simulator:
         assert scr is not None
         done = 0
         while True:
-            step = min(n - done, self._chooser.ticks_per_call)
             scr.parts[0] = self._chooser.pick()
+            step = min(n - done, self._chooser.call_ticks())
             t0 = time.perf_counter()
             with self._numba_threads():
                 ran = int(self._kernel(
@@ -264,9 +264,10 @@ class ThreadChooser:
     Results do not depend on the count, only the speed does: on a machine whose cores are
     busy with other work, threads that wait for each other at every phase can be slower
     than one. Calls are sized to about ``SUB_CALL_S`` seconds; the count not in use is
-    tried now and then (after 4, 8, ... 64 calls while it keeps losing) and the faster
-    one (seconds per tick, averaged over its recent calls) is used. ``adaptive=False``
-    always uses ``most``. ``ticks_on`` counts the ticks run on each count.
+    tried now and then for an eighth of a call (after 4, 8, ... 64 calls while it keeps
+    losing) and the faster one (seconds per tick, averaged over its recent calls) is
+    used. ``adaptive=False`` always uses ``most``. ``ticks_on`` counts the ticks run on
+    each count.
     """
 
     SUB_CALL_S = 0.05
@@ -292,6 +293,11 @@ class ThreadChooser:
             and self.since_try >= 1)
         return other if self.trying else self.current
 
+    def call_ticks(self) -> int:
+        """Ticks for the next call: about SUB_CALL_S seconds, an eighth of that for a try
+        of the count not in use (which may be much slower)."""
+        return max(1, self.ticks_per_call // 8) if self.trying else self.ticks_per_call
+
     def record(self, threads: int, ticks: int, seconds: float) -> None:
         """The last call ran ``ticks`` ticks on ``threads`` threads in ``seconds``."""
         if ticks <= 0:
@@ -300,9 +306,9 @@ class ThreadChooser:
         per_tick = seconds / ticks
         old = self.sec_per_tick[threads]
         self.sec_per_tick[threads] = per_tick if old is None else 0.5 * (old + per_tick)
-        target = max(1, int(self.SUB_CALL_S / max(per_tick, 1e-9)))
-        self.ticks_per_call = min(max(target, 1), 1 << 20)
         if not self.trying:
+            target = max(1, int(self.SUB_CALL_S / max(per_tick, 1e-9)))
+            self.ticks_per_call = min(target, 1 << 20)
             self.since_try += 1
             return
         self.since_try = 0
