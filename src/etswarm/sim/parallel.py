@@ -50,7 +50,7 @@ from __future__ import annotations
 from typing import NamedTuple
 
 import numpy as np
-from numba import njit, prange
+from numba import njit
 
 from etswarm.sim.motion import PREFETCH_AHEAD, clamp_to_arena
 from etswarm.sim.neighbours import (
@@ -424,14 +424,15 @@ def radio_list_part(p, tick, cfg, grid, pos, alive, present, tx_phase, out_on, s
                      present, tx_phase, out_on, scr, p)
 
 
-@njit(cache=True, parallel=True)
+@njit(cache=True)
 def radio_phase_mt(tick, cfg, grid, pos, alive, present, tx_phase, out_on, out_type,
                    out_data, in_count, in_type, in_data, in_dist, counters, scr):
-    """The radio phase on ``scr.parts[0]`` threads (arrays as in World; see module doc)."""
+    """The threaded radio phase run part after part on the calling thread (arrays as in
+    World; see module doc): what the threaded loop's threads do, in one call."""
     parts = scr.parts[0]
-    for p in prange(parts):
+    for p in range(parts):
         radio_list_part(p, tick, cfg, grid, pos, alive, present, tx_phase, out_on, scr)
-    for q in prange(parts):
+    for q in range(parts):
         radio_file_part(q, tick, cfg, grid, pos, alive, present, tx_phase, out_on, out_type,
                         out_data, in_count, in_type, in_data, in_dist, counters, scr)
     radio_count(counters, scr)
@@ -560,12 +561,12 @@ def move_finish(grid, pos, present, flags, scr):
         rebuild_keeping_flags(grid, pos, present, flags, scr.robot_flag)
 
 
-@njit(cache=True, parallel=True)
+@njit(cache=True)
 def move_phase_mt(tick, cfg, grid, pos, heading, motor, alive, present, speed, turn_rate,
                   flags, trig, scr):
-    """The move phase on ``scr.parts[0]`` threads; robots whose budget ran out get flag
-    bit 1 (``flags`` by slot)."""
-    for p in prange(scr.parts[0]):
+    """The threaded move phase run part after part on the calling thread; robots whose
+    budget ran out get flag bit 1 (``flags`` by slot)."""
+    for p in range(scr.parts[0]):
         move_part(p, tick, cfg, grid, pos, heading, motor, alive, present, speed, turn_rate,
                   flags, trig, scr)
     move_finish(grid, pos, present, flags, scr)
@@ -846,9 +847,10 @@ def collide_end(grid, pos, present, flags, counters, scr):
     counters[6] += cs[CS_EXAMINED]
 
 
-@njit(cache=True, parallel=True)
+@njit(cache=True)
 def collide_phase_mt(cfg, grid, pos, present, motor, flags, counters, scr):
-    """The collision phase over strips on ``scr.parts[0]`` threads (see module doc).
+    """The threaded collision phase run part after part on the calling thread (see module
+    doc).
 
     ``flags`` (N,) uint8 by slot: bit 1 marks the robots to examine; on return only
     robots left over by the pass limit are flagged (bit 1) and the grid is valid.
@@ -856,9 +858,9 @@ def collide_phase_mt(cfg, grid, pos, present, motor, flags, counters, scr):
     parts = scr.parts[0]
     collide_begin(grid, scr)
     while scr.cstate[CS_CONT] != 0:
-        for p in prange(parts):
+        for p in range(parts):
             collide_strips(p, parts, 0, cfg, grid, pos, motor, flags, scr)
-        for q in prange(parts):
+        for q in range(parts):
             collide_strips(q, parts, 1, cfg, grid, pos, motor, flags, scr)
         collide_after_pass(cfg, grid, pos, present, flags, scr)
     collide_end(grid, pos, present, flags, counters, scr)

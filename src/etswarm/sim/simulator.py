@@ -197,13 +197,6 @@ class Simulator:
     def _numba_threads(self) -> _NumbaThreads:
         return _NumbaThreads(int(self._scratch.parts[0]) if self._scratch is not None else 1)
 
-    def _one_thread(self) -> _NumbaThreads:
-        """The slow path runs the threaded phases on one thread: a parallel loop per phase
-        and tick would cost more than it saves next to a Python controller, and results
-        do not depend on the thread count."""
-        assert self._scratch is not None
-        self._scratch.parts[0] = 1
-        return _NumbaThreads(1)
 
     def _slow_tick(self) -> None:
         """One tick with a Python controller: the same phases as the compiled loop."""
@@ -211,17 +204,20 @@ class Simulator:
         g = self.grid
         scr = self._scratch
         if scr is not None:
-            with self._one_thread():
-                grid_sync_flags(g, w.pos, w.present, self._dirty_flag, scr.robot_flag)
-                radio_phase_mt(w.tick, self.cfg, g, w.pos, w.alive, w.present, w.tx_phase,
-                               w.out_on, w.out_type, w.out_data, w.in_count, w.in_type,
-                               w.in_data, w.in_dist, w.counters, scr)
-                self.controller.step(self._view())
-                move_phase_mt(w.tick, self.cfg, g, w.pos, w.heading, w.motor, w.alive,
-                              w.present, w.speed, w.turn_rate, self._dirty_flag, self._trig,
-                              scr)
-                collide_phase_mt(self.cfg, g, w.pos, w.present, w.motor, self._dirty_flag,
-                                 w.counters, scr)
+            # the threaded phases on the calling thread: threads meeting at every phase
+            # would cost more than they save next to a Python controller, and results do
+            # not depend on the thread count
+            scr.parts[0] = 1
+            grid_sync_flags(g, w.pos, w.present, self._dirty_flag, scr.robot_flag)
+            radio_phase_mt(w.tick, self.cfg, g, w.pos, w.alive, w.present, w.tx_phase,
+                           w.out_on, w.out_type, w.out_data, w.in_count, w.in_type,
+                           w.in_data, w.in_dist, w.counters, scr)
+            self.controller.step(self._view())
+            move_phase_mt(w.tick, self.cfg, g, w.pos, w.heading, w.motor, w.alive,
+                          w.present, w.speed, w.turn_rate, self._dirty_flag, self._trig,
+                          scr)
+            collide_phase_mt(self.cfg, g, w.pos, w.present, w.motor, self._dirty_flag,
+                             w.counters, scr)
             w.tick += 1
             return
         n_dirty = grid_sync(g, w.pos, w.present, self._dirty, self._dirty_flag, g.state[2])
