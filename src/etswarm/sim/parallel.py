@@ -16,33 +16,39 @@ The controller still gets the sequential controller stream (it runs on one threa
 Radio. Pass 1 (one part per thread, by sender index): each sender of this tick lists its
 receivers (slot order, as the serial radio visits them) with their measured distance,
 after the loss draw, in a (N, RX_MAX) buffer row of its own (rows of one part's senders
-are consecutive). Pass 2 (one part per thread,
-by receiver index): each thread walks all senders in index order and files the copies for
-its own receivers. So every inbox holds its copies in sender order, capped at K exactly as
-the serial radio does; with no loss and no noise the inboxes are identical to the serial
-radio's. A sender with more than RX_MAX receivers in range (only possible when many robots
-overlap) sends the whole tick through a one-thread version of the same procedure.
+are consecutive). Pass 2 (one part per thread, by receiver index): each thread walks all
+senders in index order and files the copies for its own receivers. So every inbox holds
+its copies in sender order, capped at K exactly as the serial radio does; with no loss
+and no noise the inboxes are identical to the serial radio's. A sender with more than
+RX_MAX receivers in range (only possible when many robots overlap) sends the whole tick
+through a one-thread version of the same procedure.
 
 Motion. Robots split by index into one part per thread; the arithmetic is the serial
 move's. Robots whose collision budget runs out are flagged for the collision phase.
 
 Collisions. The work list is a flag per grid slot (bit 1 or bit 2, alternating by pass:
-the pass examines slots carrying its bit and sets the other bit on robots it moves).
-The grid's cell rows are cut into at most ``2 * STRIP_PAIRS`` horizontal strips of at
-least 2 rows each, with about equal numbers of robots (a function of the grid alone,
-never of the thread count). The threaded simulator files robots in cells of
-2 r + 3.1 margin (the one-threaded one in cells of 4 r + 4 margin): a collision query
-reaches 2 r + 2 margin from a centre that lies at most a margin outside its cell, so an
-examined robot touches only slots in its own row and one row up or down, and strips 0,
-2, 4, ... can be resolved at the same time, then strips 1, 3, 5, ... (threads take the
-strips of a colour one at a time from a shared counter). The smaller cells also make
-the queries scan fewer robots.
-A strip examines its flagged slots in slot order with the serial pass's arithmetic. A
-robot pushed out of its slack box earlier in the pass is examined in the next pass
-(after the grid rebuild) instead of now. The order in which overlapping pairs are
-resolved differs from the single-threaded phase, so positions differ from threads=1
-once robots touch; the physics (overlap shares, still-robot grip, slop, pass limit,
-walls) is the same.
+the pass examines slots carrying its bit and sets the other bit on robots it moves). The
+grid's cell rows are cut into at most ``2 * STRIP_PAIRS`` horizontal strips of at least 2
+rows each, with about equal numbers of robots (a function of the grid alone, never of the
+thread count). The threaded simulator files robots in cells of 2 r + 3.1 margin (the
+single-threaded one in cells of 4 r + 4 margin): a collision query reaches 2 r + 2 margin from a
+centre that lies at most a margin outside its cell, so an examined robot touches only
+slots in its own row and one row up or down, and strips 0, 2, 4, ... can be resolved at
+the same time, then strips 1, 3, 5, ... (threads take the strips of a colour one at a
+time from a shared counter). The smaller cells also make the queries scan fewer robots. A
+strip examines its flagged slots in slot order with the serial pass's arithmetic. A robot
+pushed out of its slack box earlier in the pass is examined in the next pass (after the
+grid rebuild) instead of now. The order in which overlapping pairs are resolved differs
+from the single-threaded phase, so positions differ from threads=1 once robots touch; the
+physics (overlap shares, still-robot grip, slop, pass limit, walls) is the same.
+
+Where it runs. The threaded tick loop (:mod:`etswarm.sim.kernel`) calls the per-part
+functions (``radio_list_part``, ``radio_file_part``, ``move_part``,
+``collide_strips_grab``, ...) on every thread and the one-thread ones (``radio_count``,
+``move_finish``, ``collide_begin``, ``collide_after_pass``, ``collide_end``) on one.
+``radio_phase_mt``, ``move_phase_mt`` and ``collide_phase_mt`` run the same parts one
+after another on the calling thread (the slow path, for Python controllers); they give
+the same results.
 """
 
 from __future__ import annotations
