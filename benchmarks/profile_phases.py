@@ -9,8 +9,12 @@ pushes per robot-tick) over the timed ticks, since it grows as the swarm cluster
 
     .venv/bin/python benchmarks/profile_phases.py                    # N = 1000, 10 000
     .venv/bin/python benchmarks/profile_phases.py -n 30000 --warmup 600 --ticks 600
+    .venv/bin/python benchmarks/profile_phases.py --threads 2   # the threaded loop
 
-The loop is compiled on every start (about 20 s), not cached.
+The loop is compiled on every start (about 20 s), not cached. With ``--threads T`` (> 1)
+the threaded tick loop is timed instead (see etswarm.sim.kernel): per thread, the cycles
+of each phase and of waiting at the barriers; a phase that one thread runs alone
+(control, grid upkeep between passes) shows as waiting on the others.
 """
 
 from __future__ import annotations
@@ -21,7 +25,7 @@ import time
 import click
 import numpy as np
 from llvmlite import ir
-from numba import njit, types
+from numba import njit, prange, types
 from numba.extending import intrinsic
 
 from etswarm.sim import RandomWalk, SimParams, Simulator, arena_side_for, random_world
@@ -29,9 +33,27 @@ from etswarm.sim.collide import collide_phase
 from etswarm.sim.controllers.randomwalk import randomwalk_step
 from etswarm.sim.motion import move_phase
 from etswarm.sim.neighbours import grid_sync
+from etswarm.sim.parallel import (
+    CS_CONT,
+    collide_after_pass,
+    collide_begin,
+    collide_end,
+    collide_strips,
+    grid_sync_flags,
+    move_finish,
+    move_part,
+    radio_count,
+    radio_file_part,
+    radio_list_part,
+)
 from etswarm.sim.radio import radio_phase
+from etswarm.sim.simulator import _NumbaThreads
+from etswarm.sim.sync import atomic_load, barrier
 
 PHASES = ("radio", "control", "move", "collide")
+#: phases of the threaded loop, per thread ("upkeep": grid rebuilds and strip cuts, pass
+#: bookkeeping; "wait": at barriers)
+MT_PHASES = ("radio", "control", "move", "collide", "upkeep", "wait")
 
 
 @intrinsic
@@ -74,6 +96,137 @@ def _timed_ticks(n, tick0, cfg, grid, pos, heading, motor, led, alive, present, 
         cycles[2] += t3 - t2
         cycles[3] += t4 - t3
     return n
+
+
+@njit
+def _timed_thread(p, n, tick0, cfg, grid, pos, heading, motor, led, alive, present, speed,
+                  turn_rate, tx_phase, out_on, out_type, out_data, in_count, in_type, in_data,
+                  in_dist, counters, flags, trig, rng_ctl, mem, scr, cycles):
+    """Thread ``p`` of the threaded loop (etswarm.sim.kernel), ``cycles[p]`` (6,) counting
+    the cycles of MT_PHASES."""
+    parts = scr.parts[0]
+    sync = scr.sync
+    cs = scr.cstate
+    c = cycles[p]
+    for k in range(n):
+        tick = tick0 + k
+        t = _cycles()
+        radio_list_part(p, tick, cfg, grid, pos, alive, present, tx_phase, out_on, scr)
+        t1 = _cycles()
+        barrier(sync, parts)
+        t2 = _cycles()
+        radio_file_part(p, tick, cfg, grid, pos, alive, present, tx_phase, out_on, out_type,
+                        out_data, in_count, in_type, in_data, in_dist, counters, scr)
+        t3 = _cycles()
+        barrier(sync, parts)
+        t4 = _cycles()
+        c[0] += (t1 - t) + (t3 - t2)
+        c[5] += (t2 - t1) + (t4 - t3)
+        if p == 0:
+            radio_count(counters, scr)
+            randomwalk_step(tick, alive, in_count, in_type, in_data, in_dist, motor, led,
+                            out_on, out_type, out_data, mem, rng_ctl)
+        t5 = _cycles()
+        barrier(sync, parts)
+        t6 = _cycles()
+        move_part(p, tick, cfg, grid, pos, heading, motor, alive, present, speed, turn_rate,
+                  flags, trig, scr)
+        t7 = _cycles()
+        barrier(sync, parts)
+        t8 = _cycles()
+        if p == 0:
+            move_finish(grid, pos, present, flags, scr)
+            collide_begin(grid, scr)
+        t9 = _cycles()
+        barrier(sync, parts)
+        t10 = _cycles()
+        c[1] += t5 - t4
+        c[2] += t7 - t6
+        c[4] += t9 - t8
+        c[5] += (t6 - t5) + (t8 - t7) + (t10 - t9)
+        while atomic_load(cs, CS_CONT) != 0:
+            t = _cycles()
+            collide_strips(p, parts, 0, cfg, grid, pos, motor, flags, scr)
+            t1 = _cycles()
+            barrier(sync, parts)
+            t2 = _cycles()
+            collide_strips(p, parts, 1, cfg, grid, pos, motor, flags, scr)
+            t3 = _cycles()
+            barrier(sync, parts)
+            t4 = _cycles()
+            if p == 0:
+                collide_after_pass(cfg, grid, pos, present, flags, scr)
+            t5 = _cycles()
+            barrier(sync, parts)
+            t6 = _cycles()
+            c[3] += (t1 - t) + (t3 - t2)
+            c[4] += t5 - t4
+            c[5] += (t2 - t1) + (t4 - t3) + (t6 - t5)
+        t = _cycles()
+        if p == 0:
+            collide_end(grid, pos, present, flags, counters, scr)
+        t1 = _cycles()
+        barrier(sync, parts)
+        t2 = _cycles()
+        c[4] += t1 - t
+        c[5] += t2 - t1
+
+
+@njit(parallel=True)
+def _timed_threaded(n, tick0, cfg, grid, pos, heading, motor, led, alive, present, speed,
+                    turn_rate, tx_phase, out_on, out_type, out_data, in_count, in_type,
+                    in_data, in_dist, counters, flags, trig, rng_ctl, mem, scr, cycles):
+    grid_sync_flags(grid, pos, present, flags, scr.robot_flag)
+    for p in prange(scr.parts[0]):
+        _timed_thread(p, n, tick0, cfg, grid, pos, heading, motor, led, alive, present,
+                      speed, turn_rate, tx_phase, out_on, out_type, out_data, in_count,
+                      in_type, in_data, in_dist, counters, flags, trig, rng_ctl, mem, scr,
+                      cycles)
+    return n
+
+
+def profile_threaded(n: int, warmup: int, ticks: int, seed: int, threads: int,
+                     one_thread: bool = False) -> list[dict[str, float]]:
+    """As :func:`profile` for the threaded loop: one row per thread (ns per robot-tick
+    of each of MT_PHASES), plus wall-clock and CPU ns per robot-tick in every row.
+    ``one_thread``: run the threaded loop on one thread (its work without waiting)."""
+    params = SimParams(arena_mm=arena_side_for(n), loss=0.0, dist_noise_mm=0.0,
+                       threads=threads)
+    world = random_world(n, params, seed)
+    ctl = RandomWalk(n)
+    sim = Simulator(world, ctl, params, seed)
+    sim.run_ticks(warmup)
+    scr = sim._scratch
+    assert scr is not None
+    scr.parts[0] = parts = sim._threads_used() if one_thread is False else 1
+    cycles = np.zeros((parts, len(MT_PHASES)), dtype=np.uint64)
+
+    def call(k: int) -> tuple[float, float]:
+        w = world
+        t = time.perf_counter()
+        c = time.process_time()
+        with _NumbaThreads(parts):
+            _timed_threaded(k, w.tick, sim.cfg, sim.grid, w.pos, w.heading, w.motor, w.led,
+                            w.alive, w.present, w.speed, w.turn_rate, w.tx_phase, w.out_on,
+                            w.out_type, w.out_data, w.in_count, w.in_type, w.in_data,
+                            w.in_dist, w.counters, sim._dirty_flag, sim._trig,
+                            sim.rng_controller, ctl.mem, scr, cycles)
+        w.tick += k
+        return time.perf_counter() - t, time.process_time() - c
+
+    call(1)  # compile
+    cycles[:] = 0
+    wall, cpu = call(ticks)
+    robot_ticks = n * ticks
+    ns_per_cycle = wall / max(int(cycles[0].sum()), 1) * 1e9
+    rows = []
+    for p in range(parts):
+        row = {ph: float(cycles[p, q]) * ns_per_cycle / robot_ticks
+               for q, ph in enumerate(MT_PHASES)}
+        row["total"] = wall / robot_ticks * 1e9
+        row["cpu"] = cpu / robot_ticks * 1e9
+        rows.append(row)
+    return rows
 
 
 def profile(n: int, warmup: int, ticks: int, seed: int) -> dict[str, float]:
@@ -121,8 +274,23 @@ def profile(n: int, warmup: int, ticks: int, seed: int) -> dict[str, float]:
               help="Ticks run before timing (the swarm clusters over the first minutes).")
 @click.option("--ticks", type=int, default=1550, show_default=True, help="Ticks timed.")
 @click.option("--seed", type=int, default=1, show_default=True)
-def main(sizes: tuple[int, ...], warmup: int, ticks: int, seed: int) -> None:
+@click.option("--threads", type=int, default=1, show_default=True,
+              help="> 1: time the threaded loop on this many threads.")
+@click.option("--one-thread", is_flag=True, help="With --threads: run it on one thread.")
+def main(sizes: tuple[int, ...], warmup: int, ticks: int, seed: int, threads: int,
+         one_thread: bool) -> None:
     """Per-phase ns per robot-tick of the random-walk benchmark."""
+    if threads > 1:
+        print(f"threaded loop: ns per robot-tick per thread after {warmup} ticks, over "
+              f"{ticks} ticks; load average {os.getloadavg()[0]:.2f}")
+        print(f"{'N':>7} {'thread':>6} " + " ".join(f"{p:>8}" for p in MT_PHASES)
+              + f" {'wall':>8} {'cpu':>8}")
+        for n in sizes:
+            rows = profile_threaded(n, warmup, ticks, seed, threads, one_thread)
+            for p, r in enumerate(rows):
+                print(f"{n:>7} {p:>6} " + " ".join(f"{r[q]:>8.1f}" for q in MT_PHASES)
+                      + f" {r['total']:>8.1f} {r['cpu']:>8.1f}", flush=True)
+        return
     print(f"ns per robot-tick after {warmup} ticks, over {ticks} ticks; "
           f"load average {os.getloadavg()[0]:.2f}")
     print(f"{'N':>7} " + " ".join(f"{p:>8}" for p in PHASES)

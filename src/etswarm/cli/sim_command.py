@@ -28,11 +28,15 @@ from etswarm.errors import EtswarmError
               help="Write recording.npz and final_state.json here.")
 @click.option("--every", type=int, default=31, show_default=True,
               help="Record a frame every this many ticks (with --out).")
+@click.option("--threads", type=int, default=None,
+              help="Threads the tick phases run on (sim parameter threads; default 1). "
+                   "More than 1: deterministic, the same for every count > 1, but not "
+                   "the same results as 1.")
 @click.option("--progress/--no-progress", default=True, show_default=True,
               help="Show a progress bar on stderr.")
 def sim(controller_name: str, robots: int, seconds: float, seed: int, loss: float | None,
         noise: float | None, arena: float | None, config_file: Path | None,
-        out_dir: Path | None, every: int, progress: bool) -> None:
+        out_dir: Path | None, every: int, threads: int | None, progress: bool) -> None:
     """Run a swarm headless and print robots, ticks, wall time and speed."""
     from etswarm.sim.controllers import CONTROLLERS
     from etswarm.sim.params import SimParams
@@ -53,7 +57,10 @@ def sim(controller_name: str, robots: int, seconds: float, seed: int, loss: floa
     if every < 1:
         raise EtswarmError(f"--every must be >= 1 tick, got {every}")
     params = SimParams.from_toml(config_file) if config_file else SimParams()
-    params = params.with_overrides(loss=loss, dist_noise_mm=noise, arena_mm=arena)
+    if threads is not None and threads < 1:
+        raise EtswarmError(f"--threads must be >= 1, got {threads}")
+    params = params.with_overrides(loss=loss, dist_noise_mm=noise, arena_mm=arena,
+                                   threads=threads)
     if params.arena_mm == 0:
         params = params.with_overrides(arena_mm=round(arena_side_for(robots), 3))
     t_setup = time.perf_counter()

@@ -15,7 +15,17 @@ name carries a hash of the sources that end up inside the kernel: every ``.py`` 
 ``etswarm/sim`` and of the directory holding the controller's module, plus the numba
 version. Editing any of them gives a new kernel file (old ones can be deleted freely).
 A controller defined without a source file (an interactive session) is compiled without
-caching. The directory is ``$ETSWARM_KERNEL_DIR`` if set, else ``~/.cache/etswarm/kernels``
+caching.
+
+With ``SimParams.threads > 1`` the simulator asks for the threaded loop
+(``load_kernel(step, threaded=True)``, its own file ``..._mt_<hash>.py`` and cache): a
+``parallel=True`` function that starts one thread per ``prange`` iteration once per call;
+each thread runs every tick's phases on its share (:mod:`etswarm.sim.parallel`), the
+threads meet at spin-then-yield barriers (:mod:`etswarm.sim.sync`), and the last thread
+to arrive runs the one-thread work (the controller, grid rebuilds, pass bookkeeping).
+The default loop is generated and compiled exactly as before.
+
+The directory is ``$ETSWARM_KERNEL_DIR`` if set, else ``~/.cache/etswarm/kernels``
 (or a temporary directory when that is not writable).
 """
 
@@ -69,7 +79,78 @@ def run_ticks(n, tick0, cfg, grid, pos, heading, motor, led, alive, present, spe
     return n
 '''
 
-_loaded: dict[int, ModuleType] = {}
+_TEMPLATE_THREADED = '''"""etswarm threaded tick loop for controller {qualname}."""
+from numba import njit, prange
+
+from etswarm.sim.parallel import (
+    CS_CONT, CS_DONE, CS_STOP, collide_after_pass, collide_begin, collide_end,
+    collide_strips_grab, grid_sync_flags, move_finish, move_part, radio_count,
+    radio_file_part, radio_list_part,
+)
+from etswarm.sim.sync import arrive, atomic_load, release
+
+# controller_step is bound by etswarm.sim.kernel before this body runs.
+
+
+@njit(cache={cache})
+def thread_ticks(p, n, tick0, cfg, grid, pos, heading, motor, led, alive, present, speed,
+                 turn_rate, tx_phase, out_on, out_type, out_data, in_count, in_type, in_data,
+                 in_dist, counters, flags, trig, rng_ctl, mem, scratch):
+    # the last thread to reach a barrier does the one-thread work, then releases the rest
+    parts = scratch.parts[0]
+    sync = scratch.sync
+    cs = scratch.cstate
+    for k in range(n):
+        tick = tick0 + k
+        radio_list_part(p, tick, cfg, grid, pos, alive, present, tx_phase, out_on, scratch)
+        if arrive(sync, parts):
+            release(sync)
+        radio_file_part(p, tick, cfg, grid, pos, alive, present, tx_phase, out_on, out_type,
+                        out_data, in_count, in_type, in_data, in_dist, counters, scratch)
+        if arrive(sync, parts):
+            radio_count(counters, scratch)
+            controller_step(tick, alive, in_count, in_type, in_data, in_dist, motor, led,
+                            out_on, out_type, out_data, mem, rng_ctl)
+            release(sync)
+        move_part(p, tick, cfg, grid, pos, heading, motor, alive, present, speed, turn_rate,
+                  flags, trig, scratch)
+        if arrive(sync, parts):
+            move_finish(grid, pos, present, flags, scratch)
+            collide_begin(grid, scratch)
+            release(sync)
+        while atomic_load(cs, CS_CONT) != 0:
+            collide_strips_grab(p, 0, cfg, grid, pos, motor, flags, scratch)
+            if arrive(sync, parts):
+                release(sync)
+            collide_strips_grab(p, 1, cfg, grid, pos, motor, flags, scratch)
+            if arrive(sync, parts):
+                collide_after_pass(cfg, grid, pos, present, flags, scratch)
+                if cs[CS_CONT] == 0:
+                    collide_end(grid, pos, present, flags, counters, scratch)
+                    cs[CS_STOP] = 1 if mem[0][0] != 0 else 0
+                    cs[CS_DONE] = k + 1
+                release(sync)
+        if atomic_load(cs, CS_STOP) != 0:
+            return
+    return
+
+
+@njit(cache={cache}, parallel=True)
+def run_ticks(n, tick0, cfg, grid, pos, heading, motor, led, alive, present, speed,
+              turn_rate, tx_phase, out_on, out_type, out_data, in_count, in_type, in_data,
+              in_dist, counters, flags, trig, rng_ctl, mem, scratch):
+    if n <= 0:
+        return 0
+    grid_sync_flags(grid, pos, present, flags, scratch.robot_flag)
+    scratch.cstate[CS_DONE] = 0
+    for p in prange(scratch.parts[0]):
+        thread_ticks(p, n, tick0, cfg, grid, pos, heading, motor, led, alive, present, speed,
+                     turn_rate, tx_phase, out_on, out_type, out_data, in_count, in_type,
+                     in_data, in_dist, counters, flags, trig, rng_ctl, mem, scratch)
+    return scratch.cstate[CS_DONE]
+'''
+
+_loaded: dict[tuple[int, bool], ModuleType] = {}
 
 
 def kernel_dir() -> Path:
@@ -89,7 +170,7 @@ def kernel_dir() -> Path:
     raise OSError("no writable directory for etswarm kernels; set ETSWARM_KERNEL_DIR")
 
 
-def _source_hash(step_py: Any) -> str | None:
+def _source_hash(step_py: Any, template: str = _TEMPLATE) -> str | None:
     """Hash of the sources compiled into the kernel; None if the controller has no file."""
     try:
         src_file = inspect.getsourcefile(step_py)
@@ -98,7 +179,7 @@ def _source_hash(step_py: Any) -> str | None:
     if src_file is None or not os.path.isfile(src_file):
         return None
     digest = hashlib.sha256()
-    digest.update(_TEMPLATE.encode())
+    digest.update(template.encode())
     digest.update(numba.__version__.encode())
     sim_dir = Path(__file__).resolve().parent
     ctl_dir = Path(src_file).resolve().parent
@@ -110,21 +191,28 @@ def _source_hash(step_py: Any) -> str | None:
     return digest.hexdigest()[:16]
 
 
-def load_kernel(step: Any) -> Any:
-    """The compiled ``run_ticks`` for controller dispatcher ``step`` (see module doc)."""
-    key = id(step)
+def load_kernel(step: Any, threaded: bool = False) -> Any:
+    """The compiled ``run_ticks`` for controller dispatcher ``step`` (see module doc).
+
+    ``threaded``: the loop of the threaded phases (:mod:`etswarm.sim.parallel`), a kernel
+    of its own (file name ending ``_mt_<hash>``) with the arguments of that template.
+    """
+    key = (id(step), bool(threaded))
+    template = _TEMPLATE_THREADED if threaded else _TEMPLATE
     if key in _loaded:
         return _loaded[key].run_ticks
     py_func = getattr(step, "py_func", None)
     if py_func is None:
         raise TypeError("controller step must be an @njit function (numba dispatcher)")
-    digest = _source_hash(py_func)
+    digest = _source_hash(py_func, template)
     label = re.sub(r"[^0-9A-Za-z_]", "_", f"{py_func.__module__}_{py_func.__qualname__}")
-    source = _TEMPLATE.format(qualname=f"{py_func.__module__}.{py_func.__qualname__}",
+    if threaded:
+        label += "_mt"
+    source = template.format(qualname=f"{py_func.__module__}.{py_func.__qualname__}",
                               cache=digest is not None)
     if digest is None:
         folder = Path(tempfile.mkdtemp(prefix="etswarm-kernel-"))
-        name = f"_etswarm_kernel_{label}_{key:x}"
+        name = f"_etswarm_kernel_{label}_{id(step):x}"
     else:
         folder = kernel_dir()
         name = f"_etswarm_kernel_{label}_{digest}"

@@ -36,6 +36,7 @@ _RANGES: dict[str, tuple[float | None, float | None]] = {
     "push_slop_mm": (0, 100),
     "max_push_passes": (1, 10_000),
     "still_push_share": (0, 1),
+    "threads": (1, 256),
 }
 
 
@@ -77,6 +78,11 @@ class SimParams:
     grip. The default 0.05 (a still robot yields only a little) keeps a searching robot
     from shoving placed robots off their sites; 0.5 is Kilombo's symmetric push. Two moving
     or two still robots always share an overlap equally.
+    ``threads``: threads the tick phases run on. 1 (the default) is the single-threaded
+    simulator; more runs radio, motion and collisions on that many threads (at most the
+    machine's CPUs are used) with the same physics but counter-based random draws and a
+    different order of resolving overlaps (see :mod:`etswarm.sim.parallel`): results
+    are deterministic and the same for every value > 1, but differ from threads = 1.
     """
 
     ticks_per_s: int = 31
@@ -97,6 +103,7 @@ class SimParams:
     push_slop_mm: float = 0.1
     max_push_passes: int = 4
     still_push_share: float = 0.05
+    threads: int = 1
     source: str = field(default="", compare=False, repr=False)
 
     def __post_init__(self) -> None:
@@ -157,8 +164,11 @@ class SimParams:
         return dataclasses.replace(self, **given)
 
     def to_dict(self) -> dict[str, Any]:
-        """The parameters as a plain dict (for headers and final-state JSON)."""
-        return {f.name: getattr(self, f.name) for f in fields(self) if f.name != "source"}
+        """The parameters as a plain dict (for headers and final-state JSON); ``threads``
+        only when it is not 1 (it changes results, but files of one-threaded runs stay
+        as they were)."""
+        return {f.name: getattr(self, f.name) for f in fields(self)
+                if f.name != "source" and not (f.name == "threads" and self.threads == 1)}
 
     @classmethod
     def from_mapping(cls, values: dict[str, Any], source: str = "") -> SimParams:

@@ -19,9 +19,11 @@ Two kinds of controller plug in:
 
 from __future__ import annotations
 
+import time
 from dataclasses import dataclass
 from typing import Any
 
+import numba
 import numpy as np
 
 from etswarm.errors import EtswarmError
@@ -30,6 +32,14 @@ from etswarm.sim.collide import collide_phase
 from etswarm.sim.kernel import load_kernel
 from etswarm.sim.motion import move_phase
 from etswarm.sim.neighbours import Grid, grid_sync, make_grid
+from etswarm.sim.parallel import (
+    ThreadScratch,
+    collide_phase_mt,
+    grid_sync_flags,
+    make_scratch,
+    move_phase_mt,
+    radio_phase_mt,
+)
 from etswarm.sim.params import SimParams
 from etswarm.sim.radio import radio_phase
 from etswarm.sim.world import World
@@ -68,7 +78,9 @@ class Simulator:
 
     Streams: "motion" (motion noise), "radio" (loss and distance noise), "controller"
     (passed to the controller). The world's calibration and placement used children of
-    "motion", "radio" and "placement" when it was built.
+    "motion", "radio" and "placement" when it was built. With ``params.threads > 1`` the
+    phases run on threads (:mod:`etswarm.sim.parallel`) and draw motion and radio noise
+    from a counter-based hash keyed by one draw from the "threads" stream.
     """
 
     def __init__(self, world: World, controller: Any, params: SimParams | None = None,
@@ -89,11 +101,20 @@ class Simulator:
         n = world.n
         r = self.params.body_radius_mm
         margin = max(1.0, 0.15 * r)  # grid slack; collision budgets are up to margin / 2
-        self.grid: Grid = make_grid(n, 4.0 * r + 4.0 * margin, margin)
+        # threads > 1: smaller cells (see etswarm.sim.parallel); the one-thread phases'
+        # loops are written for cells of at least 4 r + 4 margin
+        cell = 4.0 * r + 4.0 * margin if self.params.threads == 1 else 2.0 * r + 3.1 * margin
+        self.grid: Grid = make_grid(n, cell, margin)
         self._dirty = np.zeros(n, dtype=np.int32)
         self._dirty_flag = np.zeros(n, dtype=np.uint8)
         self._spare = np.zeros(n, dtype=np.int32)
         self._trig = np.full((n, 6), np.nan)  # motion's cached cos/sin (see move_phase)
+        self.threads = self.params.threads
+        self._scratch: ThreadScratch | None = None
+        if self.threads > 1:
+            key = int(stream(self.seed, "threads").integers(0, 2**63, dtype=np.int64))
+            self._scratch = make_scratch(n, self._threads_used(), key)
+            self._chooser = ThreadChooser(self._threads_used())
         self.fast = is_fast_controller(controller)
         if self.fast:
             mem = controller.mem
@@ -101,7 +122,7 @@ class Simulator:
                     or mem[0].dtype != np.int64 or mem[0].shape != (1,)):
                 raise TypeError("controller.mem must be a tuple whose element 0 is a (1,) "
                                 "int64 stop-flag array")
-            self._kernel = load_kernel(controller.step)
+            self._kernel = load_kernel(controller.step, threaded=self._scratch is not None)
             self._call_kernel(0)  # compile, or load from the disk cache, now
         elif not callable(getattr(controller, "step", None)):
             raise TypeError("controller needs a step(view) method or an njit step + mem")
@@ -125,9 +146,15 @@ class Simulator:
                 return k + 1
         return n
 
+    def _threads_used(self) -> int:
+        """Threads actually started: ``params.threads``, at most numba's thread count."""
+        return max(1, min(self.threads, numba.config.NUMBA_NUM_THREADS))
+
     def _call_kernel(self, n: int) -> int:
         """Run the compiled loop for ``n`` ticks (0: just make sure it is compiled)."""
         w = self.world
+        if self._scratch is not None:
+            return self._call_threaded(n)
         return int(self._kernel(
             int(n), int(w.tick), self.cfg, self.grid, w.pos, w.heading, w.motor, w.led,
             w.alive, w.present, w.speed, w.turn_rate, w.tx_phase, w.out_on, w.out_type,
@@ -137,18 +164,67 @@ class Simulator:
             self.rng_controller, self.controller.mem,
         ))
 
+    def _call_threaded(self, n: int) -> int:
+        """Run the threaded loop for ``n`` ticks in calls of about SUB_CALL_S seconds each,
+        on the thread count that is fastest now (see :class:`ThreadChooser`)."""
+        w = self.world
+        scr = self._scratch
+        assert scr is not None
+        done = 0
+        while True:
+            scr.parts[0] = self._chooser.pick()
+            step = min(n - done, self._chooser.call_ticks())
+            t0 = time.perf_counter()
+            with self._numba_threads():
+                ran = int(self._kernel(
+                    int(step), int(w.tick + done), self.cfg, self.grid, w.pos, w.heading,
+                    w.motor, w.led, w.alive, w.present, w.speed, w.turn_rate, w.tx_phase,
+                    w.out_on, w.out_type, w.out_data, w.in_count, w.in_type, w.in_data,
+                    w.in_dist, w.counters, self._dirty_flag, self._trig, self.rng_controller,
+                    self.controller.mem, scr,
+                ))
+            self._chooser.record(int(scr.parts[0]), ran, time.perf_counter() - t0)
+            done += ran
+            if done >= n or ran < step:
+                return done
+
+    def _view(self) -> ControlView:
+        w = self.world
+        return ControlView(w.tick, w.alive, w.in_count, w.in_type, w.in_data, w.in_dist,
+                           w.motor, w.led, w.out_on, w.out_type, w.out_data,
+                           self.rng_controller)
+
+    def _numba_threads(self) -> _NumbaThreads:
+        return _NumbaThreads(int(self._scratch.parts[0]) if self._scratch is not None else 1)
+
+
     def _slow_tick(self) -> None:
         """One tick with a Python controller: the same phases as the compiled loop."""
         w = self.world
         g = self.grid
+        scr = self._scratch
+        if scr is not None:
+            # the threaded phases on the calling thread: threads meeting at every phase
+            # would cost more than they save next to a Python controller, and results do
+            # not depend on the thread count
+            scr.parts[0] = 1
+            grid_sync_flags(g, w.pos, w.present, self._dirty_flag, scr.robot_flag)
+            radio_phase_mt(w.tick, self.cfg, g, w.pos, w.alive, w.present, w.tx_phase,
+                           w.out_on, w.out_type, w.out_data, w.in_count, w.in_type,
+                           w.in_data, w.in_dist, w.counters, scr)
+            self.controller.step(self._view())
+            move_phase_mt(w.tick, self.cfg, g, w.pos, w.heading, w.motor, w.alive,
+                          w.present, w.speed, w.turn_rate, self._dirty_flag, self._trig,
+                          scr)
+            collide_phase_mt(self.cfg, g, w.pos, w.present, w.motor, self._dirty_flag,
+                             w.counters, scr)
+            w.tick += 1
+            return
         n_dirty = grid_sync(g, w.pos, w.present, self._dirty, self._dirty_flag, g.state[2])
         radio_phase(w.tick, self.cfg, g, w.pos, w.alive, w.present, w.tx_phase, w.out_on,
                     w.out_type, w.out_data, w.in_count, w.in_type, w.in_data, w.in_dist,
                     w.counters, self.rng_radio)
-        view = ControlView(w.tick, w.alive, w.in_count, w.in_type, w.in_data, w.in_dist,
-                           w.motor, w.led, w.out_on, w.out_type, w.out_data,
-                           self.rng_controller)
-        self.controller.step(view)
+        self.controller.step(self._view())
         n_dirty = move_phase(self.cfg, g, w.pos, w.heading, w.motor, w.alive, w.present,
                              w.speed, w.turn_rate, self._dirty, self._dirty_flag, n_dirty,
                              self._trig, self.rng_motion)
@@ -159,3 +235,82 @@ class Simulator:
     def run_seconds(self, seconds: float) -> int:
         """Run ``seconds`` of simulated time (rounded to whole ticks); return ticks run."""
         return self.run_ticks(round(seconds * self.params.ticks_per_s))
+
+
+class _NumbaThreads:
+    """Context: numba runs parallel loops on ``count`` threads, restored on exit."""
+
+    def __init__(self, count: int) -> None:
+        self.count = count
+        self.before = 1
+
+    def __enter__(self) -> None:
+        self.before = numba.get_num_threads()
+        if self.before != self.count:
+            numba.set_num_threads(self.count)
+
+    def __exit__(self, *exc: object) -> None:
+        if self.before != self.count:
+            numba.set_num_threads(self.before)
+
+
+class ThreadChooser:
+    """Picks how many threads each call of the threaded loop runs on: ``most`` or 1.
+
+    Results do not depend on the count, only the speed does: on a machine whose cores are
+    busy with other work, threads that wait for each other at every phase can be slower
+    than one. Calls are sized to about ``SUB_CALL_S`` seconds; the count not in use is
+    tried now and then for an eighth of a call (after 4, 8, ... 64 calls while it keeps
+    losing) and the faster one (seconds per tick, averaged over its recent calls) is
+    used. ``adaptive=False`` always uses ``most``. ``ticks_on`` counts the ticks run on
+    each count.
+    """
+
+    SUB_CALL_S = 0.05
+
+    def __init__(self, most: int, adaptive: bool = True) -> None:
+        self.most = most
+        self.adaptive = adaptive
+        self.ticks_on: dict[int, int] = {most: 0, 1: 0}
+        self.ticks_per_call = 16
+        self.sec_per_tick: dict[int, float | None] = {most: None, 1: None}
+        self.current = most
+        self.gap = 4
+        self.since_try = 0
+        self.trying = False
+
+    def pick(self) -> int:
+        """Thread count for the next call."""
+        if self.most == 1 or not self.adaptive:
+            return self.most
+        other = 1 if self.current == self.most else self.most
+        self.trying = self.since_try >= self.gap or (
+            self.sec_per_tick[self.current] is not None and self.sec_per_tick[other] is None
+            and self.since_try >= 1)
+        return other if self.trying else self.current
+
+    def call_ticks(self) -> int:
+        """Ticks for the next call: about SUB_CALL_S seconds, an eighth of that for a try
+        of the count not in use (which may be much slower)."""
+        return max(1, self.ticks_per_call // 8) if self.trying else self.ticks_per_call
+
+    def record(self, threads: int, ticks: int, seconds: float) -> None:
+        """The last call ran ``ticks`` ticks on ``threads`` threads in ``seconds``."""
+        if ticks <= 0:
+            return
+        self.ticks_on[threads] = self.ticks_on.get(threads, 0) + ticks
+        per_tick = seconds / ticks
+        old = self.sec_per_tick[threads]
+        self.sec_per_tick[threads] = per_tick if old is None else 0.5 * (old + per_tick)
+        if not self.trying:
+            target = max(1, int(self.SUB_CALL_S / max(per_tick, 1e-9)))
+            self.ticks_per_call = min(target, 1 << 20)
+            self.since_try += 1
+            return
+        self.since_try = 0
+        mine = self.sec_per_tick[self.current]
+        if mine is not None and self.sec_per_tick[threads] < mine:  # type: ignore[operator]
+            self.current = threads
+            self.gap = 4
+        else:
+            self.gap = min(2 * self.gap, 64)

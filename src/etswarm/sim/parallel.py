@@ -1,0 +1,872 @@
+"""The tick phases on several threads (``SimParams.threads > 1``).
+
+The same model as the single-threaded phases (:mod:`etswarm.sim.radio`,
+:mod:`etswarm.sim.motion`, :mod:`etswarm.sim.collide`), split so that threads never write
+the same memory and the result does not depend on how many threads run or which thread
+does what: the same seed gives byte-identical results for every ``threads > 1`` (and for
+this code run on one thread).
+
+Randomness. A sequential stream cannot be shared by threads, so the threaded phases draw
+from a counter-based hash instead: every draw is a SplitMix64 hash of a 64-bit run key
+(drawn once from the seed's "threads" stream), the tick, the robot and, for the radio,
+the receiver and a salt naming the draw (loss, distance noise, speed noise, heading
+noise). Uniforms take the top 53 bits; normals use Box-Muller on two such uniforms.
+The controller still gets the sequential controller stream (it runs on one thread).
+
+Radio. Pass 1 (one part per thread, by sender index): each sender of this tick lists its
+receivers (slot order, as the serial radio visits them) with their measured distance,
+after the loss draw, in a (N, RX_MAX) buffer row of its own (rows of one part's senders
+are consecutive). Pass 2 (one part per thread, by receiver index): each thread walks all
+senders in index order and files the copies for its own receivers. So every inbox holds
+its copies in sender order, capped at K exactly as the serial radio does; with no loss
+and no noise the inboxes are identical to the serial radio's. A sender with more than
+RX_MAX receivers in range (only possible when many robots overlap) sends the whole tick
+through a one-thread version of the same procedure.
+
+Motion. Robots split by index into one part per thread; the arithmetic is the serial
+move's. Robots whose collision budget runs out are flagged for the collision phase.
+
+Collisions. The work list is a flag per grid slot (bit 1 or bit 2, alternating by pass:
+the pass examines slots carrying its bit and sets the other bit on robots it moves). The
+grid's cell rows are cut into at most ``2 * STRIP_PAIRS`` horizontal strips of at least 2
+rows each, with about equal numbers of robots (a function of the grid alone, never of the
+thread count). The threaded simulator files robots in cells of 2 r + 3.1 margin (the
+single-threaded one in cells of 4 r + 4 margin): a collision query reaches 2 r + 2 margin from a
+centre that lies at most a margin outside its cell, so an examined robot touches only
+slots in its own row and one row up or down, and strips 0, 2, 4, ... can be resolved at
+the same time, then strips 1, 3, 5, ... (threads take the strips of a colour one at a
+time from a shared counter). The smaller cells also make the queries scan fewer robots. A
+strip examines its flagged slots in slot order with the serial pass's arithmetic. A robot
+pushed out of its slack box earlier in the pass is examined in the next pass (after the
+grid rebuild) instead of now. The order in which overlapping pairs are resolved differs
+from the single-threaded phase, so positions differ from threads=1 once robots touch; the
+physics (overlap shares, still-robot grip, slop, pass limit, walls) is the same.
+
+Where it runs. The threaded tick loop (:mod:`etswarm.sim.kernel`) calls the per-part
+functions (``radio_list_part``, ``radio_file_part``, ``move_part``,
+``collide_strips_grab``, ...) on every thread and the one-thread ones (``radio_count``,
+``move_finish``, ``collide_begin``, ``collide_after_pass``, ``collide_end``) on one.
+``radio_phase_mt``, ``move_phase_mt`` and ``collide_phase_mt`` run the same parts one
+after another on the calling thread (the slow path, for Python controllers); they give
+the same results.
+"""
+
+from __future__ import annotations
+
+from typing import NamedTuple
+
+import numpy as np
+from numba import njit
+
+from etswarm.sim.motion import PREFETCH_AHEAD, clamp_to_arena
+from etswarm.sim.neighbours import (
+    G_CELL,
+    G_INV,
+    G_MARGIN,
+    G_OX,
+    G_OY,
+    cell_range,
+    grid_rebuild,
+)
+from etswarm.sim.prefetch import prefetch
+from etswarm.sim.sync import atomic_add
+
+#: Strips per colour in the collision phase (strips = 2 * STRIP_PAIRS at most).
+STRIP_PAIRS = 8
+#: Receivers one sender can list per tick in the threaded radio's buffer.
+RX_MAX = 48
+
+_C1 = np.uint64(0x9E3779B97F4A7C15)
+_C2 = np.uint64(0xD1B54A32D192ED03)
+_C3 = np.uint64(0x8CB92BA72F3D8DD7)
+_M1 = np.uint64(0xBF58476D1CE4E5B9)
+_M2 = np.uint64(0x94D049BB133111EB)
+_S30 = np.uint64(30)
+_S27 = np.uint64(27)
+_S31 = np.uint64(31)
+_S11 = np.uint64(11)
+_TO_UNIT = 1.0 / 9007199254740992.0  # 2^-53
+
+#: columns of ThreadScratch.part_n
+PN_SENT, PN_LOST, PN_BAD, PN_DELIVERED, PN_OVERFLOW, PN_STALE = 0, 1, 2, 3, 4, 5
+#: entries of ThreadScratch.cstate
+CS_CUR, CS_PASSES, CS_PUSHES, CS_EXAMINED, CS_PENDING, CS_CONT, CS_STRIPS, CS_STALE = range(8)
+CS_STOP, CS_DONE, CS_GRAB0, CS_GRAB1 = 8, 9, 10, 11
+
+#: hash salts naming the draws
+SALT_LOSS, SALT_NOISE_A, SALT_NOISE_B = 1, 2, 3
+SALT_SPEED_A, SALT_SPEED_B, SALT_HEAD_A, SALT_HEAD_B = 4, 5, 6, 7
+
+
+class ThreadScratch(NamedTuple):
+    """Work arrays of the threaded phases (N robots, T threads, P = STRIP_PAIRS).
+
+    ``key`` (1,) uint64 hash key; ``parts`` (1,) int64 T; ``senders`` (N,) int32: this
+    tick's senders, part p's from row N p / T on; ``rx_j`` (N, RX_MAX) int32 and
+    ``rx_d`` (N, RX_MAX) float32 mm: receivers and distances of the sender in the same
+    row of ``senders``; ``rx_n`` (N,) int32: how many; ``part_n`` (T, 8) int64 per-part
+    counts (columns ``PN_*``); ``sync`` (2,) int64 the barrier's state
+    (:mod:`etswarm.sim.sync`); ``cstate`` (12,) int64 the collision phase's state
+    between passes and the tick loop's flags (``CS_*``); ``strips`` (2 P + 1,) int64 slot
+    bounds of the strips; ``strip_out`` (2 P, 4) int64 per-strip
+    results; ``near`` (T, N) uint32, ``near_d2`` (T, N) float64 and ``work`` (T, N) int32
+    per-thread scratch of the collision phase;
+    ``robot_flag`` (N,) uint8 flags by robot while the grid is rebuilt.
+    """
+
+    key: np.ndarray
+    parts: np.ndarray
+    rx_j: np.ndarray
+    rx_d: np.ndarray
+    rx_n: np.ndarray
+    senders: np.ndarray
+    part_n: np.ndarray
+    sync: np.ndarray
+    cstate: np.ndarray
+    strips: np.ndarray
+    strip_out: np.ndarray
+    near: np.ndarray
+    near_d2: np.ndarray
+    work: np.ndarray
+    robot_flag: np.ndarray
+
+
+def make_scratch(n: int, threads: int, key: int) -> ThreadScratch:
+    """Work arrays for ``n`` robots on ``threads`` threads with hash key ``key``."""
+    t = max(int(threads), 1)
+    return ThreadScratch(
+        key=np.array([key], dtype=np.uint64),
+        parts=np.array([t], dtype=np.int64),
+        rx_j=np.zeros((n, RX_MAX), dtype=np.int32),
+        rx_d=np.zeros((n, RX_MAX), dtype=np.float32),
+        rx_n=np.zeros(n, dtype=np.int32),
+        senders=np.zeros(n, dtype=np.int32),
+        part_n=np.zeros((t, 8), dtype=np.int64),
+        sync=np.zeros(2, dtype=np.int64),
+        cstate=np.zeros(12, dtype=np.int64),
+        strips=np.zeros(2 * STRIP_PAIRS + 1, dtype=np.int64),
+        strip_out=np.zeros((2 * STRIP_PAIRS, 4), dtype=np.int64),
+        near=np.zeros((t, n), dtype=np.uint32),
+        near_d2=np.zeros((t, n)),
+        work=np.zeros((t, n), dtype=np.int32),
+        robot_flag=np.zeros(n, dtype=np.uint8),
+    )
+
+
+# ---------------------------------------------------------------- counter-based draws
+
+
+@njit(cache=True, inline="always")
+def _mix(z):
+    """SplitMix64 finaliser (uint64 -> uint64)."""
+    z = (z ^ (z >> _S30)) * _M1
+    z = (z ^ (z >> _S27)) * _M2
+    return z ^ (z >> _S31)
+
+
+@njit(cache=True, inline="always")
+def hash_unit(key, tick, a, b):
+    """Uniform draw in (0, 1] from (key, tick, a, b) (integers >= 0)."""
+    h = _mix(key ^ (np.uint64(tick) * _C1))
+    h = _mix(h ^ (np.uint64(a) * _C2))
+    h = _mix(h ^ (np.uint64(b) * _C3))
+    return (np.float64(h >> _S11) + 1.0) * _TO_UNIT
+
+
+@njit(cache=True, inline="always")
+def hash_normal(key, tick, a, b_first, b_second):
+    """Standard normal draw (Box-Muller) from two hashed uniforms."""
+    u1 = hash_unit(key, tick, a, b_first)
+    u2 = hash_unit(key, tick, a, b_second)
+    return np.sqrt(-2.0 * np.log(u1)) * np.cos(2.0 * np.pi * u2)
+
+
+@njit(cache=True)
+def hash_draws(key, tick, a, b, count):
+    """``count`` uniforms for (key, tick, a + k, b), k < count (for tests)."""
+    out = np.empty(count)
+    for k in range(count):
+        out[k] = hash_unit(key, tick, a + k, b)
+    return out
+
+
+# ---------------------------------------------------------------- grid upkeep
+
+
+@njit(cache=True)
+def rebuild_keeping_flags(grid, pos, present, flags, robot_flag):
+    """Rebuild the grid carrying the per-slot work flags ``flags`` to the new slots."""
+    n = pos.shape[0]
+    for i in range(n):
+        s = grid.slot[i]
+        robot_flag[i] = flags[s] if s >= 0 else 0
+    grid_rebuild(grid, pos, present)
+    flags[:] = 0
+    for i in range(n):
+        s = grid.slot[i]
+        if s >= 0:
+            flags[s] = robot_flag[i]
+
+
+@njit(cache=True)
+def grid_sync_flags(grid, pos, present, flags, robot_flag):
+    """:func:`etswarm.sim.neighbours.grid_sync` for the flag work list: after outside edits
+    the grid is rebuilt and the edited robots are flagged (bit 1) with budget 0."""
+    changed = grid.state[0] != 0
+    n = pos.shape[0]
+    edited = np.zeros(n, dtype=np.bool_)
+    for i in range(n):
+        s = grid.slot[i]
+        if present[i]:
+            if s >= 0 and pos[i, 0] == grid.sx[s] and pos[i, 1] == grid.sy[s]:
+                continue
+            changed = True
+            edited[i] = True
+        elif s >= 0:
+            changed = True
+    if changed:
+        rebuild_keeping_flags(grid, pos, present, flags, robot_flag)
+        for i in range(n):
+            if edited[i]:
+                s = grid.slot[i]
+                grid.budget[s] = 0.0
+                flags[s] |= 1
+
+
+# ---------------------------------------------------------------- radio
+
+
+@njit(cache=True, inline="always")
+def _list_receivers(i, row_out, x, y, tick, key, cfg, grid, alive, rx_j, rx_d, row_cap):
+    """Receivers of sender i at (x, y) (slot order) into rx_j[row_out], rx_d[row_out];
+    returns (listed, lost), listed = -1 when more than ``row_cap`` would be listed."""
+    start, sx, sy, sidx = grid.start, grid.sx, grid.sy, grid.sidx
+    rng_r = cfg.comm_range
+    r2 = rng_r * rng_r
+    reach = rng_r + grid.geom[G_MARGIN]
+    loss = cfg.loss
+    noise = cfg.dist_noise
+    nx = grid.dims[0]
+    cx0, cx1 = cell_range(x, reach, grid.geom[G_OX], grid.geom[G_INV], nx)
+    cy0, cy1 = cell_range(y, reach, grid.geom[G_OY], grid.geom[G_INV], grid.dims[1])
+    listed = 0
+    lost = 0
+    for cy in range(cy0, cy1 + 1):
+        row = cy * nx
+        for s in range(start[row + cx0], start[row + cx1 + 1]):
+            dx = sx[s] - x
+            dy = sy[s] - y
+            d2 = dx * dx + dy * dy
+            if d2 > r2:
+                continue
+            j = sidx[s]
+            if j == i or not alive[j]:
+                continue
+            if loss > 0.0 and hash_unit(key, tick, i, j * 8 + SALT_LOSS) <= loss:
+                lost += 1
+                continue
+            if listed >= row_cap:
+                return -1, lost
+            d = np.sqrt(d2)
+            if noise > 0.0:
+                d += noise * hash_normal(key, tick, i, j * 8 + SALT_NOISE_A,
+                                         j * 8 + SALT_NOISE_B)
+                if d < 0.0:
+                    d = 0.0
+            rx_j[row_out, listed] = j
+            rx_d[row_out, listed] = d
+            listed += 1
+    return listed, lost
+
+
+@njit(cache=True, inline="always")
+def _is_sender(i, phase, tx_phase, out_on, alive, present):
+    return tx_phase[i] == phase and out_on[i] and alive[i] and present[i]
+
+
+@njit(cache=True)
+def _radio_one_thread(tick, cfg, grid, pos, alive, present, tx_phase, out_on, out_type,
+                      out_data, in_count, in_type, in_data, in_dist, counters, scr):
+    """The threaded radio's result computed on one thread without the per-sender cap
+    (used when a sender has more than RX_MAX receivers)."""
+    n = pos.shape[0]
+    cap = in_type.shape[1]
+    key = scr.key[0]
+    phase = tick % cfg.tx_period
+    in_count[:] = 0
+    big = n  # a row of rx_j is RX_MAX long: list one sender at a time into a big row
+    row_j = np.empty((1, big), dtype=np.int32)
+    row_d = np.empty((1, big), dtype=np.float32)
+    sent = 0
+    delivered = 0
+    lost = 0
+    overflow = 0
+    for i in range(n):
+        if not _is_sender(i, phase, tx_phase, out_on, alive, present):
+            continue
+        sent += 1
+        listed, n_lost = _list_receivers(i, 0, pos[i, 0], pos[i, 1], tick, key, cfg, grid,
+                                         alive, row_j, row_d, big)
+        lost += n_lost
+        for k in range(listed):
+            j = row_j[0, k]
+            c = in_count[j]
+            if c >= cap:
+                overflow += 1
+                continue
+            in_type[j, c] = out_type[i]
+            in_data[j, c, :] = out_data[i, :]
+            in_dist[j, c] = row_d[0, k]
+            in_count[j] = c + 1
+            delivered += 1
+    counters[0] += sent
+    counters[1] += delivered
+    counters[2] += lost
+    counters[3] += overflow
+
+
+@njit(cache=True)
+def _radio_list_part(lo, hi, tick, cfg, grid, pos, alive, present, tx_phase, out_on, scr, p):
+    """Pass 1 for senders lo..hi-1: list receivers; part counts into scr.part_n[p]."""
+    phase = tick % cfg.tx_period
+    key = scr.key[0]
+    m = lo
+    lost = 0
+    bad = 0
+    for i in range(lo, hi):
+        if not _is_sender(i, phase, tx_phase, out_on, alive, present):
+            continue
+        scr.senders[m] = i
+        listed, n_lost = _list_receivers(i, m, pos[i, 0], pos[i, 1], tick, key, cfg, grid,
+                                         alive, scr.rx_j, scr.rx_d, RX_MAX)
+        lost += n_lost
+        if listed < 0:
+            bad = 1
+            listed = 0
+        scr.rx_n[m] = listed
+        m += 1
+    scr.part_n[p, PN_SENT] = m - lo
+    scr.part_n[p, PN_LOST] = lost
+    scr.part_n[p, PN_BAD] = bad
+
+
+@njit(cache=True)
+def _radio_file_part(lo, hi, n, parts, out_type, out_data, in_count, in_type, in_data,
+                     in_dist, scr, p):
+    """Pass 2 for receivers lo..hi-1: file every listed copy in sender order."""
+    cap = in_type.shape[1]
+    n_bytes = out_data.shape[1]
+    in_count[lo:hi] = 0
+    delivered = 0
+    overflow = 0
+    for q in range(parts):
+        first = n * q // parts
+        for m in range(first, first + scr.part_n[q, PN_SENT]):
+            i = scr.senders[m]
+            mtype = out_type[i]
+            for k in range(scr.rx_n[m]):
+                j = scr.rx_j[m, k]
+                if j < lo or j >= hi:
+                    continue
+                c = in_count[j]
+                if c >= cap:
+                    overflow += 1
+                    continue
+                in_type[j, c] = mtype
+                for b in range(n_bytes):
+                    in_data[j, c, b] = out_data[i, b]
+                in_dist[j, c] = scr.rx_d[m, k]
+                in_count[j] = c + 1
+                delivered += 1
+    scr.part_n[p, PN_DELIVERED] = delivered
+    scr.part_n[p, PN_OVERFLOW] = overflow
+
+
+@njit(cache=True)
+def radio_bad(scr):
+    """True when a sender of this tick had more receivers than its buffer row holds."""
+    bad = 0
+    for p in range(scr.parts[0]):
+        bad += scr.part_n[p, PN_BAD]
+    return bad > 0
+
+
+@njit(cache=True)
+def radio_file_part(p, tick, cfg, grid, pos, alive, present, tx_phase, out_on, out_type,
+                    out_data, in_count, in_type, in_data, in_dist, counters, scr):
+    """Pass 2 of part ``p`` after every part's pass 1; if a buffer row overflowed, part 0
+    runs the whole tick's radio on its own instead (and counts it)."""
+    n = pos.shape[0]
+    parts = scr.parts[0]
+    if radio_bad(scr):
+        if p == 0:
+            _radio_one_thread(tick, cfg, grid, pos, alive, present, tx_phase, out_on,
+                              out_type, out_data, in_count, in_type, in_data, in_dist,
+                              counters, scr)
+        return
+    _radio_file_part(n * p // parts, n * (p + 1) // parts, n, parts, out_type, out_data,
+                     in_count, in_type, in_data, in_dist, scr, p)
+
+
+@njit(cache=True)
+def radio_count(counters, scr):
+    """Add the tick's radio counts of all parts to ``counters`` (unless the one-thread
+    radio ran and counted)."""
+    if radio_bad(scr):
+        return
+    for p in range(scr.parts[0]):
+        counters[0] += scr.part_n[p, PN_SENT]
+        counters[1] += scr.part_n[p, PN_DELIVERED]
+        counters[2] += scr.part_n[p, PN_LOST]
+        counters[3] += scr.part_n[p, PN_OVERFLOW]
+
+
+@njit(cache=True)
+def radio_list_part(p, tick, cfg, grid, pos, alive, present, tx_phase, out_on, scr):
+    """Pass 1 of part ``p`` (senders n p / T .. n (p + 1) / T - 1)."""
+    n = pos.shape[0]
+    parts = scr.parts[0]
+    _radio_list_part(n * p // parts, n * (p + 1) // parts, tick, cfg, grid, pos, alive,
+                     present, tx_phase, out_on, scr, p)
+
+
+@njit(cache=True)
+def radio_phase_mt(tick, cfg, grid, pos, alive, present, tx_phase, out_on, out_type,
+                   out_data, in_count, in_type, in_data, in_dist, counters, scr):
+    """The threaded radio phase run part after part on the calling thread (arrays as in
+    World; see module doc): what the threaded loop's threads do, in one call."""
+    parts = scr.parts[0]
+    for p in range(parts):
+        radio_list_part(p, tick, cfg, grid, pos, alive, present, tx_phase, out_on, scr)
+    for q in range(parts):
+        radio_file_part(q, tick, cfg, grid, pos, alive, present, tx_phase, out_on, out_type,
+                        out_data, in_count, in_type, in_data, in_dist, counters, scr)
+    radio_count(counters, scr)
+
+
+# ---------------------------------------------------------------- motion
+
+
+@njit(cache=True)
+def _move_part(lo, hi, tick, cfg, grid, pos, heading, motor, alive, present, speed,
+               turn_rate, flags, trig, key, out, at):
+    """Move robots lo..hi-1 (the serial move's arithmetic); ``out[at]`` = 1 if one left
+    its slack box, else 0."""
+    dt = cfg.dt
+    r = cfg.radius
+    leg = cfg.leg_angle
+    cos_leg = np.cos(leg)
+    sin_leg = np.sin(leg)
+    walls = cfg.arena > 0.0
+    two_pi = 2.0 * np.pi
+    sx, sy, slot, sbx, sby = grid.sx, grid.sy, grid.slot, grid.sbx, grid.sby
+    budget = grid.budget
+    span = grid.geom[G_CELL] + 2.0 * grid.geom[G_MARGIN]
+    stale = False
+    for i in range(lo, hi):
+        if i + PREFETCH_AHEAD < hi:
+            ahead = slot[i + PREFETCH_AHEAD]
+            prefetch(sx, ahead)
+            prefetch(sy, ahead)
+            prefetch(sbx, ahead)
+            prefetch(sby, ahead)
+            prefetch(budget, ahead)
+            prefetch(flags, ahead)
+        m = motor[i]
+        if m == 0 or not alive[i] or not present[i]:
+            continue
+        h = heading[i]
+        if trig[i, 0] != h:
+            trig[i, 0] = h
+            trig[i, 1] = np.cos(h)
+            trig[i, 2] = np.sin(h)
+        ch = trig[i, 1]
+        sh = trig[i, 2]
+        if m == 1:
+            step = speed[i] * dt
+            if cfg.speed_noise > 0.0:
+                step *= 1.0 + cfg.speed_noise * hash_normal(key, tick, i, SALT_SPEED_A,
+                                                            SALT_SPEED_B)
+            x = pos[i, 0] + step * ch
+            y = pos[i, 1] + step * sh
+            h_new = h
+            travel = abs(step)
+        else:
+            rate = turn_rate[i]
+            if trig[i, 3] != rate:
+                trig[i, 3] = rate
+                trig[i, 4] = np.cos(rate * dt)
+                trig[i, 5] = np.sin(rate * dt)
+            cd = trig[i, 4]
+            sd = trig[i, 5]
+            dth = rate * dt
+            if m == 3:
+                sd = -sd
+                dth = -dth
+                sl = -sin_leg
+            else:
+                sl = sin_leg
+            ca = ch * cos_leg - sh * sl
+            sa = sh * cos_leg + ch * sl
+            ca2 = ca * cd - sa * sd
+            sa2 = sa * cd + ca * sd
+            x = pos[i, 0] + r * (ca - ca2)
+            y = pos[i, 1] + r * (sa - sa2)
+            h_new = h + dth
+            travel = r * abs(dth)
+            ch, sh = ch * cd - sh * sd, sh * cd + ch * sd
+        if cfg.heading_noise > 0.0:
+            h_new += cfg.heading_noise * hash_normal(key, tick, i, SALT_HEAD_A, SALT_HEAD_B)
+            ch = np.cos(h_new)
+            sh = np.sin(h_new)
+        if h_new > np.pi:
+            h_new -= two_pi
+        elif h_new <= -np.pi:
+            h_new += two_pi
+        if walls:
+            x = clamp_to_arena(x, r, cfg.arena)
+            y = clamp_to_arena(y, r, cfg.arena)
+        pos[i, 0] = x
+        pos[i, 1] = y
+        heading[i] = h_new
+        trig[i, 0] = h_new
+        trig[i, 1] = ch
+        trig[i, 2] = sh
+        s = slot[i]
+        sx[s] = x
+        sy[s] = y
+        bx = sbx[s]
+        by = sby[s]
+        if x < bx or x >= bx + span or y < by or y >= by + span:
+            stale = True
+        b = budget[s] - travel
+        budget[s] = b
+        if b <= 0.0:
+            flags[s] |= 1
+    out[at] = 1 if stale else 0
+
+
+@njit(cache=True)
+def move_part(p, tick, cfg, grid, pos, heading, motor, alive, present, speed, turn_rate,
+              flags, trig, scr):
+    """Move robots n p / T .. n (p + 1) / T - 1; part_n[p, PN_STALE] = left a box."""
+    n = pos.shape[0]
+    parts = scr.parts[0]
+    _move_part(n * p // parts, n * (p + 1) // parts, tick, cfg, grid, pos, heading, motor,
+               alive, present, speed, turn_rate, flags, trig, scr.key[0], scr.part_n[p],
+               PN_STALE)
+
+
+@njit(cache=True)
+def move_finish(grid, pos, present, flags, scr):
+    """After every part moved: rebuild the grid if a robot left its slack box."""
+    stale = False
+    for p in range(scr.parts[0]):
+        stale |= scr.part_n[p, PN_STALE] != 0
+    if stale:
+        rebuild_keeping_flags(grid, pos, present, flags, scr.robot_flag)
+
+
+@njit(cache=True)
+def move_phase_mt(tick, cfg, grid, pos, heading, motor, alive, present, speed, turn_rate,
+                  flags, trig, scr):
+    """The threaded move phase run part after part on the calling thread; robots whose
+    budget ran out get flag bit 1 (``flags`` by slot)."""
+    for p in range(scr.parts[0]):
+        move_part(p, tick, cfg, grid, pos, heading, motor, alive, present, speed, turn_rate,
+                  flags, trig, scr)
+    move_finish(grid, pos, present, flags, scr)
+
+
+# ---------------------------------------------------------------- collisions
+
+
+@njit(cache=True)
+def strip_bounds(grid, strips):
+    """Cut the grid's rows into strips of >= 2 rows with about equal robot counts; write
+    their slot bounds to ``strips`` and return how many (<= 2 * STRIP_PAIRS)."""
+    nx = grid.dims[0]
+    ny = grid.dims[1]
+    start = grid.start
+    total = start[nx * ny]
+    n_strips = min(2 * STRIP_PAIRS, ny // 2)
+    if n_strips < 1:
+        n_strips = 1
+    strips[0] = 0
+    prev = 0
+    for k in range(1, n_strips):
+        target = total * k / n_strips
+        row = prev + 2
+        last = ny - 2 * (n_strips - k)
+        while row < last and start[row * nx] < target:
+            row += 1
+        strips[k] = start[row * nx]
+        prev = row
+    strips[n_strips] = total
+    return n_strips
+
+
+@njit(cache=True)
+def _collide_strip(lo, hi, cur_bit, nxt_bit, cfg, grid, pos, motor, flags, near, near_d2,
+                   work, out):
+    """One pass over the slots lo..hi-1 of a strip (see module doc); writes examined,
+    pushes, newly flagged slots and a stale flag to ``out`` (4,)."""
+    r = cfg.radius
+    still_share = cfg.still_share
+    contact = 2.0 * r
+    resolve2 = (contact - cfg.slop) * (contact - cfg.slop)
+    walls = cfg.arena > 0.0
+    arena = cfg.arena
+    start, sx, sy, sidx, sbx, sby = grid.start, grid.sx, grid.sy, grid.sidx, grid.sbx, grid.sby
+    margin = grid.geom[G_MARGIN]
+    reach = contact + 2.0 * margin
+    near2 = (contact + margin) * (contact + margin)
+    half_margin = 0.5 * margin
+    contact2 = contact * contact
+    share_k = 0.5 / (2.0 * contact + margin)
+    budget = grid.budget
+    span = grid.geom[G_CELL] + 2.0 * grid.geom[G_MARGIN]
+    inv = grid.geom[G_INV]
+    ox = grid.geom[G_OX]
+    oy = grid.geom[G_OY]
+    nx = grid.dims[0]
+    ny = grid.dims[1]
+    examined = 0
+    pushes = 0
+    n_next = 0
+    stale = False
+    # the strip's flagged slots in slot order, gathered without branching on the flags
+    # (only this strip examines or flags them while it runs)
+    n_work = 0
+    for a in range(lo, hi):
+        work[n_work] = a
+        n_work += (flags[a] & cur_bit) != 0
+    for w in range(n_work):
+        a = work[w]
+        f = flags[a] & ~cur_bit
+        xi = sx[a]
+        yi = sy[a]
+        if xi < sbx[a] or xi >= sbx[a] + span or yi < sby[a] or yi >= sby[a] + span:
+            # pushed out of its slack box earlier in this pass: its query could reach
+            # beyond the rows next to its own; examine it after the rebuild
+            stale = True
+            if f & nxt_bit == 0:
+                n_next += 1
+            flags[a] = f | nxt_bit
+            continue
+        flags[a] = f
+        examined += 1
+        moved_i = False
+        own = half_margin
+        cx0, cx1 = cell_range(xi, reach, ox, inv, nx)
+        cy0, cy1 = cell_range(yi, reach, oy, inv, ny)
+        n_near = 0
+        ua = np.uint64(a)
+        for cy in range(cy0, cy1 + 1, 2):
+            row = cy * nx
+            b0 = np.uint64(start[row + cx0])
+            len0 = np.uint64(start[row + cx1 + 1]) - b0
+            if cy + 1 <= cy1:
+                b1 = np.uint64(start[row + nx + cx0])
+                len1 = np.uint64(start[row + nx + cx1 + 1]) - b1
+            else:
+                b1 = np.uint64(0)
+                len1 = np.uint64(0)
+            gap = b1 - len0
+            for t in range(len0 + len1):
+                s = t + (b0 if t < len0 else gap)
+                dx = sx[s] - xi
+                dy = sy[s] - yi
+                d2 = dx * dx + dy * dy
+                near[n_near] = s
+                near_d2[n_near] = d2
+                n_near += (d2 < near2) & (s != ua)
+        n_over = 0
+        for q in range(n_near):
+            s = near[q]
+            d2 = near_d2[q]
+            share = max((d2 - contact2) * share_k, 0.0)
+            own = min(own, share)
+            budget[s] = min(budget[s], share)
+            near[n_over] = s
+            n_over += d2 < resolve2
+        for q in range(n_over):
+            s = near[q]
+            dx = sx[s] - xi
+            dy = sy[s] - yi
+            d2 = dx * dx + dy * dy
+            if d2 >= resolve2:
+                continue
+            d = np.sqrt(d2)
+            if d > 1e-9:
+                ux = dx / d
+                uy = dy / d
+            else:
+                ang = 2.399963229728653 * ((a + 1) * (s + 1) % 1024)
+                ux = np.cos(ang)
+                uy = np.sin(ang)
+            j = sidx[s]
+            share_j = 0.5
+            if (motor[sidx[a]] == 0) != (motor[j] == 0):
+                share_j = still_share if motor[j] == 0 else 1.0 - still_share
+            depth = contact - d
+            xi -= (1.0 - share_j) * depth * ux
+            yi -= (1.0 - share_j) * depth * uy
+            xj = sx[s] + share_j * depth * ux
+            yj = sy[s] + share_j * depth * uy
+            if walls:
+                xi = clamp_to_arena(xi, r, arena)
+                yi = clamp_to_arena(yi, r, arena)
+                xj = clamp_to_arena(xj, r, arena)
+                yj = clamp_to_arena(yj, r, arena)
+            sx[s] = xj
+            sy[s] = yj
+            pos[j, 0] = xj
+            pos[j, 1] = yj
+            budget[s] = 0.0
+            bx = sbx[s]
+            by = sby[s]
+            if xj < bx or xj >= bx + span or yj < by or yj >= by + span:
+                stale = True
+            fs = flags[s]
+            if fs & nxt_bit == 0:
+                flags[s] = fs | nxt_bit
+                n_next += 1
+            moved_i = True
+            pushes += 1
+        if not moved_i:
+            budget[a] = own
+        else:
+            i = sidx[a]
+            budget[a] = 0.0
+            sx[a] = xi
+            sy[a] = yi
+            pos[i, 0] = xi
+            pos[i, 1] = yi
+            if xi < sbx[a] or xi >= sbx[a] + span or yi < sby[a] or yi >= sby[a] + span:
+                stale = True
+            fa = flags[a]
+            if fa & nxt_bit == 0:
+                flags[a] = fa | nxt_bit
+                n_next += 1
+    out[0] = examined
+    out[1] = pushes
+    out[2] = n_next
+    out[3] = stale
+
+
+@njit(cache=True)
+def collide_begin(grid, scr):
+    """Start a tick's collision phase (one thread, after the move)."""
+    cs = scr.cstate
+    cs[CS_CUR] = 1
+    cs[CS_PASSES] = 0
+    cs[CS_PUSHES] = 0
+    cs[CS_EXAMINED] = 0
+    cs[CS_PENDING] = 0
+    cs[CS_CONT] = 1
+    cs[CS_STALE] = 0
+    cs[CS_STRIPS] = strip_bounds(grid, scr.strips)
+    cs[CS_GRAB0] = 0
+    cs[CS_GRAB1] = 0
+
+
+@njit(cache=True)
+def collide_strips(p, parts, colour, cfg, grid, pos, motor, flags, scr):
+    """Thread ``p`` of ``parts`` resolves strips ``p``, ``p + parts``, ... of ``colour``."""
+    cs = scr.cstate
+    n_strips = cs[CS_STRIPS]
+    cur_bit = cs[CS_CUR]
+    n_col = (n_strips + 1 - colour) // 2
+    for q in range(p, n_col, parts):
+        k = 2 * q + colour
+        _collide_strip(scr.strips[k], scr.strips[k + 1], cur_bit, 3 - cur_bit, cfg, grid,
+                       pos, motor, flags, scr.near[p], scr.near_d2[p], scr.work[p],
+                       scr.strip_out[k])
+
+
+@njit(cache=True)
+def collide_strips_grab(p, colour, cfg, grid, pos, motor, flags, scr):
+    """Thread ``p`` resolves strips of ``colour`` taken one at a time from a shared
+    counter until none is left (the threads that finish first take more)."""
+    cs = scr.cstate
+    n_strips = cs[CS_STRIPS]
+    cur_bit = cs[CS_CUR]
+    n_col = (n_strips + 1 - colour) // 2
+    q = atomic_add(cs, CS_GRAB0 + colour, 1)
+    while q < n_col:
+        k = 2 * q + colour
+        _collide_strip(scr.strips[k], scr.strips[k + 1], cur_bit, 3 - cur_bit, cfg, grid,
+                       pos, motor, flags, scr.near[p], scr.near_d2[p], scr.work[p],
+                       scr.strip_out[k])
+        q = atomic_add(cs, CS_GRAB0 + colour, 1)
+
+
+@njit(cache=True)
+def collide_after_pass(cfg, grid, pos, present, flags, scr):
+    """Sum a pass's strips and decide whether another pass runs (one thread); before
+    it, rebuild the grid if a robot left its slack box and cut new strips."""
+    cs = scr.cstate
+    out = scr.strip_out
+    ex = 0
+    pu = 0
+    nn = 0
+    for k in range(cs[CS_STRIPS]):
+        ex += out[k, 0]
+        pu += out[k, 1]
+        nn += out[k, 2]
+        if out[k, 3] != 0:
+            cs[CS_STALE] = 1
+    if ex == 0 and nn == 0:
+        cs[CS_PENDING] = 0
+        cs[CS_CONT] = 0
+        return
+    cs[CS_EXAMINED] += ex
+    cs[CS_PUSHES] += pu
+    cs[CS_PASSES] += 1
+    cs[CS_CUR] = 3 - cs[CS_CUR]
+    cs[CS_PENDING] = 1 if nn > 0 else 0
+    cs[CS_CONT] = 1 if nn > 0 and cs[CS_PASSES] < cfg.max_passes else 0
+    if cs[CS_CONT] != 0:
+        if cs[CS_STALE] != 0:
+            rebuild_keeping_flags(grid, pos, present, flags, scr.robot_flag)
+            cs[CS_STALE] = 0
+        cs[CS_STRIPS] = strip_bounds(grid, scr.strips)
+        cs[CS_GRAB0] = 0
+        cs[CS_GRAB1] = 0
+
+
+@njit(cache=True)
+def collide_end(grid, pos, present, flags, counters, scr):
+    """Finish a tick's collision phase (one thread): robots left over by the pass limit
+    keep flag bit 1, the grid is valid, counters are updated."""
+    cs = scr.cstate
+    if cs[CS_PENDING] != 0:
+        counters[5] += 1
+        if cs[CS_CUR] == 2:
+            for s in range(flags.shape[0]):
+                flags[s] = flags[s] >> 1
+    if cs[CS_STALE] != 0:
+        rebuild_keeping_flags(grid, pos, present, flags, scr.robot_flag)
+        cs[CS_STALE] = 0
+    counters[4] += cs[CS_PUSHES]
+    counters[6] += cs[CS_EXAMINED]
+
+
+@njit(cache=True)
+def collide_phase_mt(cfg, grid, pos, present, motor, flags, counters, scr):
+    """The threaded collision phase run part after part on the calling thread (see module
+    doc).
+
+    ``flags`` (N,) uint8 by slot: bit 1 marks the robots to examine; on return only
+    robots left over by the pass limit are flagged (bit 1) and the grid is valid.
+    """
+    parts = scr.parts[0]
+    collide_begin(grid, scr)
+    while scr.cstate[CS_CONT] != 0:
+        for p in range(parts):
+            collide_strips(p, parts, 0, cfg, grid, pos, motor, flags, scr)
+        for q in range(parts):
+            collide_strips(q, parts, 1, cfg, grid, pos, motor, flags, scr)
+        collide_after_pass(cfg, grid, pos, present, flags, scr)
+    collide_end(grid, pos, present, flags, counters, scr)
