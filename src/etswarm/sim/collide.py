@@ -31,11 +31,17 @@ from numba import njit
 from etswarm.sim.motion import clamp_to_arena
 from etswarm.sim.neighbours import (
     G_CELL,
+    G_DRIFT,
     G_INV,
     G_MARGIN,
     G_OX,
     G_OY,
+    S_DRIFTED,
+    S_EPOCH,
+    build_contact_list,
     cell_range,
+    drifted,
+    new_epoch,
     rebuild_keeping_list,
 )
 
@@ -81,10 +87,18 @@ def collide_phase(cfg, grid, pos, present, motor, dirty, dirty_flag, n_dirty, sp
     pushes = 0
     examined = 0
     stale = False
+    near_r = contact + margin
+    drift2 = grid.geom[G_DRIFT] * grid.geom[G_DRIFT]
+    near_slots, near_n, near_epoch = grid.near_slots, grid.near_n, grid.near_epoch
     while n_cur > 0 and passes < cfg.max_passes:
         if stale:
             n_cur = rebuild_keeping_list(grid, pos, present, cur, n_cur, dirty_flag)
             stale = False
+        if grid.state[S_DRIFTED] != 0:
+            new_epoch(grid)
+        # contact lists may be used and built while nobody drifted (see neighbours)
+        lists_ok = True
+        epoch = grid.state[S_EPOCH]
         # grid geometry (changes only at a rebuild)
         span = grid.geom[G_CELL] + 2.0 * grid.geom[G_MARGIN]
         inv = grid.geom[G_INV]
@@ -111,46 +125,24 @@ def collide_phase(cfg, grid, pos, present, motor, dirty, dirty_flag, n_dirty, sp
             yi = sy[a]
             moved_i = False
             own = half_margin
-            cx0, cx1 = cell_range(xi, reach, ox, inv, nx)
-            cy0, cy1 = cell_range(yi, reach, oy, inv, ny)
-            # gather the slots within contact + margin without branching on distances
-            n_near = 0
-            ua = np.uint64(a)
+            n_list = -1
+            if lists_ok:
+                if near_epoch[a] != epoch:
+                    near_n[a] = build_contact_list(grid, a, xi, yi, near_r, 0, ny - 1)
+                    near_epoch[a] = epoch
+                n_list = near_n[a]
+            if n_list >= 0:
+                # the listed slots: the same overlaps and budgets as the cell query
+                n_over, own = list_overlaps(near_slots[a], n_list, xi, yi, own, near2,
+                                            contact2, share_k, resolve2, half_margin, sx, sy,
+                                            budget, near)
+            else:
+                n_over, own = gather_overlaps(a, xi, yi, own, reach, near2, contact2, share_k,
+                                           resolve2, ox, oy, inv, nx, ny, start, sx, sy,
+                                           budget, near, near_d2)
             # a query covers at most 2 rows (cell = query width); each row's cells are
             # one run of slots, and both runs are walked as one loop (one loop exit to
             # mispredict instead of two); the step of 2 keeps larger queries correct
-            for cy in range(cy0, cy1 + 1, 2):
-                row = cy * nx
-                b0 = np.uint64(start[row + cx0])
-                len0 = np.uint64(start[row + cx1 + 1]) - b0
-                if cy + 1 <= cy1:
-                    b1 = np.uint64(start[row + nx + cx0])
-                    len1 = np.uint64(start[row + nx + cx1 + 1]) - b1
-                else:
-                    b1 = np.uint64(0)
-                    len1 = np.uint64(0)
-                gap = b1 - len0  # modulo 2^64: t + gap = b1 + (t - len0) for t >= len0
-                for t in range(len0 + len1):
-                    s = t + (b0 if t < len0 else gap)
-                    dx = sx[s] - xi
-                    dy = sy[s] - yi
-                    d2 = dx * dx + dy * dy
-                    near[n_near] = s
-                    near_d2[n_near] = d2
-                    n_near += (d2 < near2) & (s != ua)
-            # share the gaps between budgets (lowering a budget is always safe) and
-            # pick out the overlapping ones, again without branches on distances
-            n_over = 0
-            for q in range(n_near):
-                s = near[q]
-                d2 = near_d2[q]
-                # half the gap d - 2r, bounded below without a sqrt:
-                # d - c = (d^2 - c^2) / (d + c) and d + c <= 2c + margin
-                share = max((d2 - contact2) * share_k, 0.0)
-                own = min(own, share)
-                budget[s] = min(budget[s], share)
-                near[n_over] = s
-                n_over += d2 < resolve2
             for q in range(n_over):
                 s = near[q]
                 dx = sx[s] - xi
@@ -186,6 +178,8 @@ def collide_phase(cfg, grid, pos, present, motor, dirty, dirty_flag, n_dirty, sp
                 pos[j, 0] = xj
                 pos[j, 1] = yj
                 budget[s] = 0.0
+                if drifted(grid, s, xj, yj, drift2):
+                    lists_ok = False
                 bx = sbx[s]
                 by = sby[s]
                 if xj < bx or xj >= bx + span or yj < by or yj >= by + span:
@@ -205,6 +199,8 @@ def collide_phase(cfg, grid, pos, present, motor, dirty, dirty_flag, n_dirty, sp
                 sy[a] = yi
                 pos[i, 0] = xi
                 pos[i, 1] = yi
+                if drifted(grid, a, xi, yi, drift2):
+                    lists_ok = False
                 bx = sbx[a]
                 by = sby[a]
                 if xi < bx or xi >= bx + span or yi < by or yi >= by + span:
@@ -213,6 +209,8 @@ def collide_phase(cfg, grid, pos, present, motor, dirty, dirty_flag, n_dirty, sp
                     dirty_flag[a] = 1
                     nxt_list[n_next] = a
                     n_next += 1
+        if not lists_ok:
+            grid.state[S_DRIFTED] = 1
         tmp = cur
         cur = nxt_list
         nxt_list = tmp
@@ -232,3 +230,73 @@ def collide_phase(cfg, grid, pos, present, motor, dirty, dirty_flag, n_dirty, sp
     counters[4] += pushes
     counters[6] += examined
     return n_cur
+
+
+@njit(cache=True, inline="always")
+def gather_overlaps(a, xi, yi, own, reach, near2, contact2, share_k, resolve2, ox, oy, inv,
+                 nx, ny, start, sx, sy, budget, near, near_d2):
+    """The cell query of an examination: lower the budgets of the slots within
+    contact + margin of slot ``a`` at (xi, yi) to their share of the gap, write the
+    overlapping ones to ``near`` in slot order; returns (their number, own budget)."""
+    cx0, cx1 = cell_range(xi, reach, ox, inv, nx)
+    cy0, cy1 = cell_range(yi, reach, oy, inv, ny)
+    # gather the slots within contact + margin without branching on distances
+    n_near = 0
+    ua = np.uint64(a)
+    # a query covers at most 2 rows (cell = query width); each row's cells are
+    # one run of slots, and both runs are walked as one loop (one loop exit to
+    # mispredict instead of two); the step of 2 keeps larger queries correct
+    for cy in range(cy0, cy1 + 1, 2):
+        row = cy * nx
+        b0 = np.uint64(start[row + cx0])
+        len0 = np.uint64(start[row + cx1 + 1]) - b0
+        if cy + 1 <= cy1:
+            b1 = np.uint64(start[row + nx + cx0])
+            len1 = np.uint64(start[row + nx + cx1 + 1]) - b1
+        else:
+            b1 = np.uint64(0)
+            len1 = np.uint64(0)
+        gap = b1 - len0  # modulo 2^64: t + gap = b1 + (t - len0) for t >= len0
+        for t in range(len0 + len1):
+            s = t + (b0 if t < len0 else gap)
+            dx = sx[s] - xi
+            dy = sy[s] - yi
+            d2 = dx * dx + dy * dy
+            near[n_near] = s
+            near_d2[n_near] = d2
+            n_near += (d2 < near2) & (s != ua)
+    # share the gaps between budgets (lowering a budget is always safe) and
+    # pick out the overlapping ones, again without branches on distances
+    n_over = 0
+    for q in range(n_near):
+        s = near[q]
+        d2 = near_d2[q]
+        # half the gap d - 2r, bounded below without a sqrt:
+        # d - c = (d^2 - c^2) / (d + c) and d + c <= 2c + margin
+        share = max((d2 - contact2) * share_k, 0.0)
+        own = min(own, share)
+        budget[s] = min(budget[s], share)
+        near[n_over] = s
+        n_over += d2 < resolve2
+    return n_over, own
+
+
+@njit(cache=True, inline="always")
+def list_overlaps(listed, n_list, xi, yi, own, near2, contact2, share_k, resolve2,
+                  half_margin, sx, sy, budget, near):
+    """:func:`gather_overlaps` from a contact list ``listed[:n_list]`` (slots in slot order,
+    a superset of those within contact + margin): the same budgets, the same overlaps in
+    the same order. One loop; beyond contact + margin the share is half the margin, which
+    changes no budget (none exceeds it)."""
+    n_over = 0
+    for q in range(n_list):
+        s = np.uint32(listed[q])
+        dx = sx[s] - xi
+        dy = sy[s] - yi
+        d2 = dx * dx + dy * dy
+        share = max((d2 - contact2) * share_k, 0.0) if d2 < near2 else half_margin
+        own = min(own, share)
+        budget[s] = min(budget[s], share)
+        near[n_over] = s
+        n_over += d2 < resolve2
+    return n_over, own

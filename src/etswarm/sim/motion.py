@@ -9,8 +9,10 @@ N(0, speed_noise) and a heading jitter N(0, heading_noise) rad, from the motion 
 With walls the centre is kept inside [r, arena - r]^2. Dead or absent robots do not move.
 Every robot that moved is updated in the grid (rebuilt if one left its slack box); its
 travel is taken from its collision budget, and when that is used up it is appended to the
-collision work list. Robots are visited in index order, their grid slots lie scattered in
-memory: the slot data of the robot a few places ahead is prefetched.
+collision work list; one that drifted from its place at the start of the contact-list
+epoch raises the grid's drifted flag. Robots are visited in index order, their grid
+slots lie scattered in memory: the slot data of the robot a few places ahead is
+prefetched.
 """
 
 from __future__ import annotations
@@ -18,7 +20,14 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
-from etswarm.sim.neighbours import G_CELL, G_MARGIN, rebuild_keeping_list
+from etswarm.sim.neighbours import (
+    G_CELL,
+    G_DRIFT,
+    G_MARGIN,
+    S_DRIFTED,
+    drifted,
+    rebuild_keeping_list,
+)
 from etswarm.sim.prefetch import prefetch
 
 #: Robots ahead whose grid slot data a move step asks the cache for (slots are scattered).
@@ -56,7 +65,9 @@ def move_phase(cfg, grid, pos, heading, motor, alive, present, speed, turn_rate,
     sx, sy, slot, sbx, sby = grid.sx, grid.sy, grid.slot, grid.sbx, grid.sby
     budget = grid.budget
     span = grid.geom[G_CELL] + 2.0 * grid.geom[G_MARGIN]
+    drift2 = grid.geom[G_DRIFT] * grid.geom[G_DRIFT]
     stale = False
+    drift = False
     n = pos.shape[0]
     for i in range(n):
         if i + PREFETCH_AHEAD < n:
@@ -67,6 +78,8 @@ def move_phase(cfg, grid, pos, heading, motor, alive, present, speed, turn_rate,
             prefetch(sby, ahead)
             prefetch(budget, ahead)
             prefetch(dirty_flag, ahead)
+            prefetch(grid.ref_x, ahead)
+            prefetch(grid.ref_y, ahead)
         m = motor[i]
         if m == 0 or not alive[i] or not present[i]:
             continue
@@ -135,12 +148,15 @@ def move_phase(cfg, grid, pos, heading, motor, alive, present, speed, turn_rate,
         by = sby[s]
         if x < bx or x >= bx + span or y < by or y >= by + span:
             stale = True
+        drift |= drifted(grid, s, x, y, drift2)
         b = budget[s] - travel
         budget[s] = b
         if b <= 0.0 and dirty_flag[s] == 0:
             dirty_flag[s] = 1
             dirty[n_dirty] = s
             n_dirty += 1
+    if drift:
+        grid.state[S_DRIFTED] = 1  # contact lists are void from here (see neighbours)
     if stale:
         n_dirty = rebuild_keeping_list(grid, pos, present, dirty, n_dirty, dirty_flag)
     return n_dirty

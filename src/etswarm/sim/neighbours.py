@@ -16,10 +16,27 @@ with copies of their positions; a row of neighbouring cells is one contiguous sl
 - ``budget`` (N,) float64 mm, by slot: how far the robot may still travel before the
   collision phase must examine it (see :mod:`etswarm.sim.collide`); carried over to the
   new slots by a rebuild
-- ``geom``   (6,) float64: minimum cell, margin, cell, 1/cell, origin x, origin y (mm)
+- ``geom``   (7,) float64: minimum cell, margin, cell, 1/cell, origin x, origin y,
+  drift (mm)
 - ``dims``   (2,) int64: nx, ny
-- ``state``  (3,) int64: [stale flag, number of rebuilds, length of the collision work
-  list carried over to the next tick]
+- ``state``  (5,) int64: [stale flag, number of rebuilds, length of the collision work
+  list carried over to the next tick, contact-list epoch, drifted flag]
+- ``ref_x``, ``ref_y`` (N,) float64 mm, by slot: position at the start of the epoch
+- ``near_slots`` (N, LIST_CAP) int32, ``near_n`` (N,) int32, ``near_epoch`` (N,) int64, by
+  slot: the robot's contact list (see below), its length (-1: too many candidates, use
+  the grid) and the epoch it was built in
+
+Contact lists. A collision examination needs the robots within 2 r + margin of the
+examined one; scanning its cells each time costs far more than the few robots found. So
+the first examination of a robot in an *epoch* lists, in slot order, every robot within
+2 r + margin + 4 drift (its contact list), and later examinations in the epoch only
+check the listed robots. An epoch lasts while every filed robot stays within ``drift``
+mm of where it stood when the epoch began (``ref_x``, ``ref_y``): then two robots closer
+than 2 r + margin now were closer than 2 r + margin + 4 drift when either list was built,
+so a list holds every robot a query of the cells would find, in the same order. A phase
+that moves a robot further raises the drifted flag and stops using lists; the next
+collision pass starts a new epoch (:func:`new_epoch`), and so does every rebuild (slots
+change). Lists are rebuilt lazily, so robots that are never examined cost nothing.
 
 A filed robot may wander up to ``margin`` mm outside its filed cell before the list must
 be rebuilt (O(N + cells)); queries widen their box by the margin and clip it to the
@@ -55,17 +72,31 @@ class Grid(NamedTuple):
     geom: np.ndarray
     dims: np.ndarray
     state: np.ndarray
+    ref_x: np.ndarray
+    ref_y: np.ndarray
+    near_slots: np.ndarray
+    near_n: np.ndarray
+    near_epoch: np.ndarray
 
 
 #: indices into Grid.geom
-G_CELL_MIN, G_MARGIN, G_CELL, G_INV, G_OX, G_OY = 0, 1, 2, 3, 4, 5
+G_CELL_MIN, G_MARGIN, G_CELL, G_INV, G_OX, G_OY, G_DRIFT = 0, 1, 2, 3, 4, 5, 6
+#: indices into Grid.state
+S_STALE, S_REBUILDS, S_CARRIED, S_EPOCH, S_DRIFTED = 0, 1, 2, 3, 4
+#: Robots a contact list holds; a robot with more candidates is examined through the grid.
+LIST_CAP = 16
+#: Added to the contact-list radius against rounding (mm).
+LIST_EPS = 0.01
 
 
-def make_grid(n_robots: int, cell_mm: float, margin_mm: float) -> Grid:
+def make_grid(n_robots: int, cell_mm: float, margin_mm: float,
+              drift_mm: float = 1.0) -> Grid:
     """An empty cell list for ``n_robots`` robots: cells of at least ``cell_mm`` mm, slack
-    ``margin_mm`` mm, at most max(4096, 8 N) cells."""
-    if cell_mm <= 0 or margin_mm < 0:
-        raise ValueError(f"bad grid geometry: cell {cell_mm} mm, margin {margin_mm} mm")
+    ``margin_mm`` mm, at most max(4096, 8 N) cells; contact-list epochs end when a robot
+    drifts ``drift_mm`` mm."""
+    if cell_mm <= 0 or margin_mm < 0 or drift_mm <= 0:
+        raise ValueError(f"bad grid geometry: cell {cell_mm} mm, margin {margin_mm} mm, "
+                         f"drift {drift_mm} mm")
     capacity = max(4096, 8 * n_robots)
     return Grid(
         start=np.zeros(capacity + 1, dtype=np.int32),
@@ -76,9 +107,14 @@ def make_grid(n_robots: int, cell_mm: float, margin_mm: float) -> Grid:
         sbx=np.zeros(n_robots),
         sby=np.zeros(n_robots),
         budget=np.zeros(n_robots),
-        geom=np.array([cell_mm, margin_mm, cell_mm, 1.0 / cell_mm, 0.0, 0.0]),
+        geom=np.array([cell_mm, margin_mm, cell_mm, 1.0 / cell_mm, 0.0, 0.0, drift_mm]),
         dims=np.ones(2, dtype=np.int64),
-        state=np.zeros(3, dtype=np.int64),
+        state=np.zeros(5, dtype=np.int64),
+        ref_x=np.zeros(n_robots),
+        ref_y=np.zeros(n_robots),
+        near_slots=np.zeros((n_robots, LIST_CAP), dtype=np.int32),
+        near_n=np.zeros(n_robots, dtype=np.int32),
+        near_epoch=np.full(n_robots, -1, dtype=np.int64),
     )
 
 
@@ -162,11 +198,65 @@ def grid_rebuild(grid, pos, present):
         grid.sidx[k] = i
         grid.sx[k] = pos[i, 0]
         grid.sy[k] = pos[i, 1]
+        grid.ref_x[k] = pos[i, 0]
+        grid.ref_y[k] = pos[i, 1]
         grid.budget[k] = kept_budget[i]
         grid.sbx[k] = minx + (c % nx) * cell - margin
         grid.sby[k] = miny + (c // nx) * cell - margin
-    grid.state[0] = 0
-    grid.state[1] += 1
+    grid.state[S_STALE] = 0
+    grid.state[S_REBUILDS] += 1
+    grid.state[S_EPOCH] += 1  # slots changed: every contact list is void
+    grid.state[S_DRIFTED] = 0
+
+
+@njit(cache=True)
+def new_epoch(grid):
+    """Start a contact-list epoch: every list is void, robots drift from where they are."""
+    n_filed = grid.start[grid.dims[0] * grid.dims[1]]
+    grid.ref_x[:n_filed] = grid.sx[:n_filed]
+    grid.ref_y[:n_filed] = grid.sy[:n_filed]
+    grid.state[S_EPOCH] += 1
+    grid.state[S_DRIFTED] = 0
+
+
+@njit(cache=True, inline="always")
+def drifted(grid, s, x, y, drift2):
+    """True when slot ``s`` at (x, y) is more than the drift (``drift2`` its square) away
+    from where it stood when the epoch began."""
+    ex = x - grid.ref_x[s]
+    ey = y - grid.ref_y[s]
+    return ex * ex + ey * ey > drift2
+
+
+@njit(cache=True, inline="always")
+def build_contact_list(grid, a, xi, yi, near_r, row_lo, row_hi):
+    """Write the contact list of slot ``a`` at (xi, yi): every other filed slot within
+    ``near_r`` + 4 drift (+ LIST_EPS) mm, in slot order, scanning cell rows clipped to
+    ``row_lo`` .. ``row_hi``. Returns its length, or -1 if it holds more than LIST_CAP."""
+    start, sx, sy = grid.start, grid.sx, grid.sy
+    margin = grid.geom[G_MARGIN]
+    list_r = near_r + 4.0 * grid.geom[G_DRIFT] + LIST_EPS
+    list_r2 = list_r * list_r
+    reach = list_r + margin
+    inv = grid.geom[G_INV]
+    nx = grid.dims[0]
+    cx0, cx1 = cell_range(xi, reach, grid.geom[G_OX], inv, nx)
+    cy0, cy1 = cell_range(yi, reach, grid.geom[G_OY], inv, grid.dims[1])
+    cy0 = max(cy0, row_lo)
+    cy1 = min(cy1, row_hi)
+    out = grid.near_slots[a]
+    count = 0
+    for cy in range(cy0, cy1 + 1):
+        row = cy * nx
+        for s in range(start[row + cx0], start[row + cx1 + 1]):
+            dx = sx[s] - xi
+            dy = sy[s] - yi
+            if dx * dx + dy * dy < list_r2 and s != a:
+                if count == LIST_CAP:
+                    return -1
+                out[count] = s
+                count += 1
+    return count
 
 
 @njit(cache=True)

@@ -58,15 +58,22 @@ from typing import NamedTuple
 import numpy as np
 from numba import njit
 
+from etswarm.sim.collide import gather_overlaps, list_overlaps
 from etswarm.sim.motion import PREFETCH_AHEAD, clamp_to_arena
 from etswarm.sim.neighbours import (
     G_CELL,
+    G_DRIFT,
     G_INV,
     G_MARGIN,
     G_OX,
     G_OY,
+    S_DRIFTED,
+    S_EPOCH,
+    build_contact_list,
     cell_range,
+    drifted,
     grid_rebuild,
+    new_epoch,
 )
 from etswarm.sim.prefetch import prefetch
 from etswarm.sim.sync import atomic_add
@@ -88,10 +95,13 @@ _S11 = np.uint64(11)
 _TO_UNIT = 1.0 / 9007199254740992.0  # 2^-53
 
 #: columns of ThreadScratch.part_n
-PN_SENT, PN_LOST, PN_BAD, PN_DELIVERED, PN_OVERFLOW, PN_STALE = 0, 1, 2, 3, 4, 5
+PN_SENT, PN_LOST, PN_BAD, PN_DELIVERED, PN_OVERFLOW, PN_STALE, PN_DRIFT = 0, 1, 2, 3, 4, 5, 6
 #: entries of ThreadScratch.cstate
 CS_CUR, CS_PASSES, CS_PUSHES, CS_EXAMINED, CS_PENDING, CS_CONT, CS_STRIPS, CS_STALE = range(8)
 CS_STOP, CS_DONE, CS_GRAB0, CS_GRAB1 = 8, 9, 10, 11
+
+#: columns of ThreadScratch.strip_out
+SO_EXAMINED, SO_PUSHES, SO_FLAGGED, SO_STALE, SO_DRIFT = 0, 1, 2, 3, 4
 
 #: hash salts naming the draws
 SALT_LOSS, SALT_NOISE_A, SALT_NOISE_B = 1, 2, 3
@@ -108,7 +118,7 @@ class ThreadScratch(NamedTuple):
     counts (columns ``PN_*``); ``sync`` (2,) int64 the barrier's state
     (:mod:`etswarm.sim.sync`); ``cstate`` (12,) int64 the collision phase's state
     between passes and the tick loop's flags (``CS_*``); ``strips`` (2 P + 1,) int64 slot
-    bounds of the strips; ``strip_out`` (2 P, 4) int64 per-strip
+    bounds of the strips; ``strip_out`` (2 P, 5) int64 per-strip
     results; ``near`` (T, N) uint32, ``near_d2`` (T, N) float64 and ``work`` (T, N) int32
     per-thread scratch of the collision phase;
     ``robot_flag`` (N,) uint8 flags by robot while the grid is rebuilt.
@@ -145,7 +155,7 @@ def make_scratch(n: int, threads: int, key: int) -> ThreadScratch:
         sync=np.zeros(2, dtype=np.int64),
         cstate=np.zeros(12, dtype=np.int64),
         strips=np.zeros(2 * STRIP_PAIRS + 1, dtype=np.int64),
-        strip_out=np.zeros((2 * STRIP_PAIRS, 4), dtype=np.int64),
+        strip_out=np.zeros((2 * STRIP_PAIRS, 5), dtype=np.int64),
         near=np.zeros((t, n), dtype=np.uint32),
         near_d2=np.zeros((t, n)),
         work=np.zeros((t, n), dtype=np.int32),
@@ -449,9 +459,9 @@ def radio_phase_mt(tick, cfg, grid, pos, alive, present, tx_phase, out_on, out_t
 
 @njit(cache=True)
 def _move_part(lo, hi, tick, cfg, grid, pos, heading, motor, alive, present, speed,
-               turn_rate, flags, trig, key, out, at):
+               turn_rate, flags, trig, key, out, at, at_drift):
     """Move robots lo..hi-1 (the serial move's arithmetic); ``out[at]`` = 1 if one left
-    its slack box, else 0."""
+    its slack box, else 0; ``out[at_drift]`` = 1 if one drifted (contact lists void)."""
     dt = cfg.dt
     r = cfg.radius
     leg = cfg.leg_angle
@@ -462,7 +472,9 @@ def _move_part(lo, hi, tick, cfg, grid, pos, heading, motor, alive, present, spe
     sx, sy, slot, sbx, sby = grid.sx, grid.sy, grid.slot, grid.sbx, grid.sby
     budget = grid.budget
     span = grid.geom[G_CELL] + 2.0 * grid.geom[G_MARGIN]
+    drift2 = grid.geom[G_DRIFT] * grid.geom[G_DRIFT]
     stale = False
+    drift = False
     for i in range(lo, hi):
         if i + PREFETCH_AHEAD < hi:
             ahead = slot[i + PREFETCH_AHEAD]
@@ -472,6 +484,8 @@ def _move_part(lo, hi, tick, cfg, grid, pos, heading, motor, alive, present, spe
             prefetch(sby, ahead)
             prefetch(budget, ahead)
             prefetch(flags, ahead)
+            prefetch(grid.ref_x, ahead)
+            prefetch(grid.ref_y, ahead)
         m = motor[i]
         if m == 0 or not alive[i] or not present[i]:
             continue
@@ -539,11 +553,13 @@ def _move_part(lo, hi, tick, cfg, grid, pos, heading, motor, alive, present, spe
         by = sby[s]
         if x < bx or x >= bx + span or y < by or y >= by + span:
             stale = True
+        drift |= drifted(grid, s, x, y, drift2)
         b = budget[s] - travel
         budget[s] = b
         if b <= 0.0:
             flags[s] |= 1
     out[at] = 1 if stale else 0
+    out[at_drift] = 1 if drift else 0
 
 
 @njit(cache=True)
@@ -554,15 +570,18 @@ def move_part(p, tick, cfg, grid, pos, heading, motor, alive, present, speed, tu
     parts = scr.parts[0]
     _move_part(n * p // parts, n * (p + 1) // parts, tick, cfg, grid, pos, heading, motor,
                alive, present, speed, turn_rate, flags, trig, scr.key[0], scr.part_n[p],
-               PN_STALE)
+               PN_STALE, PN_DRIFT)
 
 
 @njit(cache=True)
 def move_finish(grid, pos, present, flags, scr):
-    """After every part moved: rebuild the grid if a robot left its slack box."""
+    """After every part moved: rebuild the grid if a robot left its slack box (or mark
+    the contact lists void if one drifted)."""
     stale = False
     for p in range(scr.parts[0]):
         stale |= scr.part_n[p, PN_STALE] != 0
+        if scr.part_n[p, PN_DRIFT] != 0:
+            grid.state[S_DRIFTED] = 1
     if stale:
         rebuild_keeping_flags(grid, pos, present, flags, scr.robot_flag)
 
@@ -607,10 +626,16 @@ def strip_bounds(grid, strips):
 
 
 @njit(cache=True)
-def _collide_strip(lo, hi, cur_bit, nxt_bit, cfg, grid, pos, motor, flags, near, near_d2,
-                   work, out):
+def _collide_strip(lo, hi, cur_bit, nxt_bit, lists_ok, cfg, grid, pos, motor, flags, near,
+                   near_d2, work, out):
     """One pass over the slots lo..hi-1 of a strip (see module doc); writes examined,
-    pushes, newly flagged slots and a stale flag to ``out`` (4,)."""
+    pushes, newly flagged slots, a stale flag and a drift flag to ``out`` (5,).
+
+    Contact lists (see :mod:`etswarm.sim.neighbours`) are used while ``lists_ok`` and no
+    robot this strip moved has drifted; a list is built from the robot's own cell row
+    and the rows next to it only (no other strip writes there during the pass, and a
+    robot two rows away cannot come within contact + margin without leaving its slack
+    box, which sends the pass's robots through a rebuild)."""
     r = cfg.radius
     still_share = cfg.still_share
     contact = 2.0 * r
@@ -631,6 +656,11 @@ def _collide_strip(lo, hi, cur_bit, nxt_bit, cfg, grid, pos, motor, flags, near,
     oy = grid.geom[G_OY]
     nx = grid.dims[0]
     ny = grid.dims[1]
+    near_r = contact + margin
+    drift2 = grid.geom[G_DRIFT] * grid.geom[G_DRIFT]
+    epoch = grid.state[S_EPOCH]
+    near_slots, near_n, near_epoch = grid.near_slots, grid.near_n, grid.near_epoch
+    drift = False
     examined = 0
     pushes = 0
     n_next = 0
@@ -658,38 +688,20 @@ def _collide_strip(lo, hi, cur_bit, nxt_bit, cfg, grid, pos, motor, flags, near,
         examined += 1
         moved_i = False
         own = half_margin
-        cx0, cx1 = cell_range(xi, reach, ox, inv, nx)
-        cy0, cy1 = cell_range(yi, reach, oy, inv, ny)
-        n_near = 0
-        ua = np.uint64(a)
-        for cy in range(cy0, cy1 + 1, 2):
-            row = cy * nx
-            b0 = np.uint64(start[row + cx0])
-            len0 = np.uint64(start[row + cx1 + 1]) - b0
-            if cy + 1 <= cy1:
-                b1 = np.uint64(start[row + nx + cx0])
-                len1 = np.uint64(start[row + nx + cx1 + 1]) - b1
-            else:
-                b1 = np.uint64(0)
-                len1 = np.uint64(0)
-            gap = b1 - len0
-            for t in range(len0 + len1):
-                s = t + (b0 if t < len0 else gap)
-                dx = sx[s] - xi
-                dy = sy[s] - yi
-                d2 = dx * dx + dy * dy
-                near[n_near] = s
-                near_d2[n_near] = d2
-                n_near += (d2 < near2) & (s != ua)
-        n_over = 0
-        for q in range(n_near):
-            s = near[q]
-            d2 = near_d2[q]
-            share = max((d2 - contact2) * share_k, 0.0)
-            own = min(own, share)
-            budget[s] = min(budget[s], share)
-            near[n_over] = s
-            n_over += d2 < resolve2
+        n_list = -1
+        if lists_ok and not drift:
+            if near_epoch[a] != epoch:
+                row_a = np.int64((sby[a] + margin - oy) * inv + 0.5)
+                near_n[a] = build_contact_list(grid, a, xi, yi, near_r, row_a - 1, row_a + 1)
+                near_epoch[a] = epoch
+            n_list = near_n[a]
+        if n_list >= 0:
+            n_over, own = list_overlaps(near_slots[a], n_list, xi, yi, own, near2, contact2,
+                                        share_k, resolve2, half_margin, sx, sy, budget, near)
+        else:
+            n_over, own = gather_overlaps(a, xi, yi, own, reach, near2, contact2, share_k,
+                                          resolve2, ox, oy, inv, nx, ny, start, sx, sy,
+                                          budget, near, near_d2)
         for q in range(n_over):
             s = near[q]
             dx = sx[s] - xi
@@ -724,6 +736,7 @@ def _collide_strip(lo, hi, cur_bit, nxt_bit, cfg, grid, pos, motor, flags, near,
             pos[j, 0] = xj
             pos[j, 1] = yj
             budget[s] = 0.0
+            drift |= drifted(grid, s, xj, yj, drift2)
             bx = sbx[s]
             by = sby[s]
             if xj < bx or xj >= bx + span or yj < by or yj >= by + span:
@@ -743,16 +756,18 @@ def _collide_strip(lo, hi, cur_bit, nxt_bit, cfg, grid, pos, motor, flags, near,
             sy[a] = yi
             pos[i, 0] = xi
             pos[i, 1] = yi
+            drift |= drifted(grid, a, xi, yi, drift2)
             if xi < sbx[a] or xi >= sbx[a] + span or yi < sby[a] or yi >= sby[a] + span:
                 stale = True
             fa = flags[a]
             if fa & nxt_bit == 0:
                 flags[a] = fa | nxt_bit
                 n_next += 1
-    out[0] = examined
-    out[1] = pushes
-    out[2] = n_next
-    out[3] = stale
+    out[SO_EXAMINED] = examined
+    out[SO_PUSHES] = pushes
+    out[SO_FLAGGED] = n_next
+    out[SO_STALE] = stale
+    out[SO_DRIFT] = drift
 
 
 @njit(cache=True)
@@ -769,6 +784,20 @@ def collide_begin(grid, scr):
     cs[CS_STRIPS] = strip_bounds(grid, scr.strips)
     cs[CS_GRAB0] = 0
     cs[CS_GRAB1] = 0
+    if grid.state[S_DRIFTED] != 0:
+        new_epoch(grid)
+
+
+@njit(cache=True, inline="always")
+def _lists_ok(colour, cs, strip_out):
+    """Contact lists are good for strips of ``colour`` in this pass: the epoch began
+    before the pass (so nobody has drifted before it), and for colour 1 no colour-0
+    strip of the pass drifted a robot."""
+    drifts = 0
+    if colour == 1:
+        for k in range(0, cs[CS_STRIPS], 2):
+            drifts += strip_out[k, SO_DRIFT]
+    return drifts == 0
 
 
 @njit(cache=True)
@@ -778,9 +807,10 @@ def collide_strips(p, parts, colour, cfg, grid, pos, motor, flags, scr):
     n_strips = cs[CS_STRIPS]
     cur_bit = cs[CS_CUR]
     n_col = (n_strips + 1 - colour) // 2
+    ok = _lists_ok(colour, cs, scr.strip_out)
     for q in range(p, n_col, parts):
         k = 2 * q + colour
-        _collide_strip(scr.strips[k], scr.strips[k + 1], cur_bit, 3 - cur_bit, cfg, grid,
+        _collide_strip(scr.strips[k], scr.strips[k + 1], cur_bit, 3 - cur_bit, ok, cfg, grid,
                        pos, motor, flags, scr.near[p], scr.near_d2[p], scr.work[p],
                        scr.strip_out[k])
 
@@ -793,10 +823,11 @@ def collide_strips_grab(p, colour, cfg, grid, pos, motor, flags, scr):
     n_strips = cs[CS_STRIPS]
     cur_bit = cs[CS_CUR]
     n_col = (n_strips + 1 - colour) // 2
+    ok = _lists_ok(colour, cs, scr.strip_out)
     q = atomic_add(cs, CS_GRAB0 + colour, 1)
     while q < n_col:
         k = 2 * q + colour
-        _collide_strip(scr.strips[k], scr.strips[k + 1], cur_bit, 3 - cur_bit, cfg, grid,
+        _collide_strip(scr.strips[k], scr.strips[k + 1], cur_bit, 3 - cur_bit, ok, cfg, grid,
                        pos, motor, flags, scr.near[p], scr.near_d2[p], scr.work[p],
                        scr.strip_out[k])
         q = atomic_add(cs, CS_GRAB0 + colour, 1)
@@ -812,11 +843,13 @@ def collide_after_pass(cfg, grid, pos, present, flags, scr):
     pu = 0
     nn = 0
     for k in range(cs[CS_STRIPS]):
-        ex += out[k, 0]
-        pu += out[k, 1]
-        nn += out[k, 2]
-        if out[k, 3] != 0:
+        ex += out[k, SO_EXAMINED]
+        pu += out[k, SO_PUSHES]
+        nn += out[k, SO_FLAGGED]
+        if out[k, SO_STALE] != 0:
             cs[CS_STALE] = 1
+        if out[k, SO_DRIFT] != 0:
+            grid.state[S_DRIFTED] = 1
     if ex == 0 and nn == 0:
         cs[CS_PENDING] = 0
         cs[CS_CONT] = 0
@@ -831,6 +864,8 @@ def collide_after_pass(cfg, grid, pos, present, flags, scr):
         if cs[CS_STALE] != 0:
             rebuild_keeping_flags(grid, pos, present, flags, scr.robot_flag)
             cs[CS_STALE] = 0
+        elif grid.state[S_DRIFTED] != 0:
+            new_epoch(grid)
         cs[CS_STRIPS] = strip_bounds(grid, scr.strips)
         cs[CS_GRAB0] = 0
         cs[CS_GRAB1] = 0

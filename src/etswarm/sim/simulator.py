@@ -44,6 +44,9 @@ from etswarm.sim.params import SimParams
 from etswarm.sim.radio import radio_phase
 from etswarm.sim.world import World
 
+#: Contact-list drift (mm): see etswarm.sim.neighbours.
+DRIFT_MM = 1.0
+
 
 @dataclass
 class ControlView:
@@ -104,7 +107,7 @@ class Simulator:
         # threads > 1: smaller cells (see etswarm.sim.parallel); the one-thread phases'
         # loops are written for cells of at least 4 r + 4 margin
         cell = 4.0 * r + 4.0 * margin if self.params.threads == 1 else 2.0 * r + 3.1 * margin
-        self.grid: Grid = make_grid(n, cell, margin)
+        self.grid: Grid = make_grid(n, cell, margin, DRIFT_MM)
         self._dirty = np.zeros(n, dtype=np.int32)
         self._dirty_flag = np.zeros(n, dtype=np.uint8)
         self._spare = np.zeros(n, dtype=np.int32)
