@@ -128,7 +128,8 @@ def collide_phase(cfg, grid, pos, present, motor, dirty, dirty_flag, n_dirty, sp
             n_list = -1
             if lists_ok:
                 if near_epoch[a] != epoch:
-                    near_n[a] = build_contact_list(grid, a, xi, yi, near_r, 0, ny - 1)
+                    near_n[a] = build_contact_list(grid, a, xi, yi, near_r, 0, ny - 1,
+                                                    near)
                     near_epoch[a] = epoch
                 n_list = near_n[a]
             if n_list >= 0:

@@ -229,10 +229,11 @@ def drifted(grid, s, x, y, drift2):
 
 
 @njit(cache=True, inline="always")
-def build_contact_list(grid, a, xi, yi, near_r, row_lo, row_hi):
+def build_contact_list(grid, a, xi, yi, near_r, row_lo, row_hi, buf):
     """Write the contact list of slot ``a`` at (xi, yi): every other filed slot within
     ``near_r`` + 4 drift (+ LIST_EPS) mm, in slot order, scanning cell rows clipped to
-    ``row_lo`` .. ``row_hi``. Returns its length, or -1 if it holds more than LIST_CAP."""
+    ``row_lo`` .. ``row_hi``. Returns its length, or -1 if it holds more than LIST_CAP.
+    ``buf`` (N,) uint32 scratch (the scan keeps slots without branching on distances)."""
     start, sx, sy = grid.start, grid.sx, grid.sy
     margin = grid.geom[G_MARGIN]
     list_r = near_r + 4.0 * grid.geom[G_DRIFT] + LIST_EPS
@@ -244,18 +245,20 @@ def build_contact_list(grid, a, xi, yi, near_r, row_lo, row_hi):
     cy0, cy1 = cell_range(yi, reach, grid.geom[G_OY], inv, grid.dims[1])
     cy0 = max(cy0, row_lo)
     cy1 = min(cy1, row_hi)
-    out = grid.near_slots[a]
+    ua = np.uint64(a)
     count = 0
     for cy in range(cy0, cy1 + 1):
         row = cy * nx
-        for s in range(start[row + cx0], start[row + cx1 + 1]):
+        for s in range(np.uint64(start[row + cx0]), np.uint64(start[row + cx1 + 1])):
             dx = sx[s] - xi
             dy = sy[s] - yi
-            if dx * dx + dy * dy < list_r2 and s != a:
-                if count == LIST_CAP:
-                    return -1
-                out[count] = s
-                count += 1
+            buf[count] = s
+            count += (dx * dx + dy * dy < list_r2) & (s != ua)
+    if count > LIST_CAP:
+        return -1
+    out = grid.near_slots[a]
+    for q in range(count):
+        out[q] = buf[q]
     return count
 
 

@@ -120,7 +120,7 @@ class ThreadScratch(NamedTuple):
     between passes and the tick loop's flags (``CS_*``); ``strips`` (2 P + 1,) int64 slot
     bounds of the strips; ``strip_out`` (2 P, 5) int64 per-strip
     results; ``near`` (T, N) uint32, ``near_d2`` (T, N) float64 and ``work`` (T, N) int32
-    per-thread scratch of the collision phase;
+    per-thread scratch of the collision phase (work, near_d2: also of the radio);
     ``robot_flag`` (N,) uint8 flags by robot while the grid is rebuilt.
     """
 
@@ -247,9 +247,11 @@ def grid_sync_flags(grid, pos, present, flags, robot_flag):
 
 
 @njit(cache=True, inline="always")
-def _list_receivers(i, row_out, x, y, tick, key, cfg, grid, alive, rx_j, rx_d, row_cap):
+def _list_receivers(i, row_out, x, y, tick, key, cfg, grid, alive, rx_j, rx_d, row_cap,
+                    cand_s, cand_d2):
     """Receivers of sender i at (x, y) (slot order) into rx_j[row_out], rx_d[row_out];
-    returns (listed, lost), listed = -1 when more than ``row_cap`` would be listed."""
+    returns (listed, lost), listed = -1 when more than ``row_cap`` would be listed.
+    ``cand_s`` (N,) int32 and ``cand_d2`` (N,) float64: scratch for the slots in range."""
     start, sx, sy, sidx = grid.start, grid.sx, grid.sy, grid.sidx
     rng_r = cfg.comm_range
     r2 = rng_r * rng_r
@@ -259,33 +261,38 @@ def _list_receivers(i, row_out, x, y, tick, key, cfg, grid, alive, rx_j, rx_d, r
     nx = grid.dims[0]
     cx0, cx1 = cell_range(x, reach, grid.geom[G_OX], grid.geom[G_INV], nx)
     cy0, cy1 = cell_range(y, reach, grid.geom[G_OY], grid.geom[G_INV], grid.dims[1])
-    listed = 0
-    lost = 0
+    # the slots in range in slot order, kept without branching on distances
+    n_in = 0
     for cy in range(cy0, cy1 + 1):
         row = cy * nx
         for s in range(start[row + cx0], start[row + cx1 + 1]):
             dx = sx[s] - x
             dy = sy[s] - y
             d2 = dx * dx + dy * dy
-            if d2 > r2:
-                continue
-            j = sidx[s]
-            if j == i or not alive[j]:
-                continue
-            if loss > 0.0 and hash_unit(key, tick, i, j * 8 + SALT_LOSS) <= loss:
-                lost += 1
-                continue
-            if listed >= row_cap:
-                return -1, lost
-            d = np.sqrt(d2)
-            if noise > 0.0:
-                d += noise * hash_normal(key, tick, i, j * 8 + SALT_NOISE_A,
-                                         j * 8 + SALT_NOISE_B)
-                if d < 0.0:
-                    d = 0.0
-            rx_j[row_out, listed] = j
-            rx_d[row_out, listed] = d
-            listed += 1
+            cand_s[n_in] = s
+            cand_d2[n_in] = d2
+            n_in += d2 <= r2
+    listed = 0
+    lost = 0
+    for q in range(n_in):
+        d2 = cand_d2[q]
+        j = sidx[cand_s[q]]
+        if j == i or not alive[j]:
+            continue
+        if loss > 0.0 and hash_unit(key, tick, i, j * 8 + SALT_LOSS) <= loss:
+            lost += 1
+            continue
+        if listed >= row_cap:
+            return -1, lost
+        d = np.sqrt(d2)
+        if noise > 0.0:
+            d += noise * hash_normal(key, tick, i, j * 8 + SALT_NOISE_A,
+                                     j * 8 + SALT_NOISE_B)
+            if d < 0.0:
+                d = 0.0
+        rx_j[row_out, listed] = j
+        rx_d[row_out, listed] = d
+        listed += 1
     return listed, lost
 
 
@@ -316,7 +323,8 @@ def _radio_one_thread(tick, cfg, grid, pos, alive, present, tx_phase, out_on, ou
             continue
         sent += 1
         listed, n_lost = _list_receivers(i, 0, pos[i, 0], pos[i, 1], tick, key, cfg, grid,
-                                         alive, row_j, row_d, big)
+                                         alive, row_j, row_d, big, scr.work[0],
+                                         scr.near_d2[0])
         lost += n_lost
         for k in range(listed):
             j = row_j[0, k]
@@ -348,7 +356,8 @@ def _radio_list_part(lo, hi, tick, cfg, grid, pos, alive, present, tx_phase, out
             continue
         scr.senders[m] = i
         listed, n_lost = _list_receivers(i, m, pos[i, 0], pos[i, 1], tick, key, cfg, grid,
-                                         alive, scr.rx_j, scr.rx_d, RX_MAX)
+                                         alive, scr.rx_j, scr.rx_d, RX_MAX, scr.work[p],
+                                         scr.near_d2[p])
         lost += n_lost
         if listed < 0:
             bad = 1
@@ -371,9 +380,19 @@ def _radio_file_part(lo, hi, n, parts, out_type, out_data, in_count, in_type, in
     overflow = 0
     for q in range(parts):
         first = n * q // parts
-        for m in range(first, first + scr.part_n[q, PN_SENT]):
+        last = first + scr.part_n[q, PN_SENT]
+        for m in range(first, last):
             i = scr.senders[m]
             mtype = out_type[i]
+            if m + 1 < last:
+                # the next sender's receivers here: ask for their inbox rows (scattered)
+                for k in range(scr.rx_n[m + 1]):
+                    j = scr.rx_j[m + 1, k]
+                    j = j if (j >= lo) & (j < hi) else lo
+                    prefetch(in_count, j)
+                    prefetch(in_type, j)
+                    prefetch(in_data, j)
+                    prefetch(in_dist, j)
             for k in range(scr.rx_n[m]):
                 j = scr.rx_j[m, k]
                 if j < lo or j >= hi:
@@ -692,7 +711,8 @@ def _collide_strip(lo, hi, cur_bit, nxt_bit, lists_ok, cfg, grid, pos, motor, fl
         if lists_ok and not drift:
             if near_epoch[a] != epoch:
                 row_a = np.int64((sby[a] + margin - oy) * inv + 0.5)
-                near_n[a] = build_contact_list(grid, a, xi, yi, near_r, row_a - 1, row_a + 1)
+                near_n[a] = build_contact_list(grid, a, xi, yi, near_r, row_a - 1,
+                                                 row_a + 1, near)
                 near_epoch[a] = epoch
             n_list = near_n[a]
         if n_list >= 0:
