@@ -22,7 +22,8 @@ With ``SimParams.threads > 1`` the simulator asks for the threaded loop
 ``parallel=True`` function that starts one thread per ``prange`` iteration once per call;
 each thread runs every tick's phases on its share (:mod:`etswarm.sim.parallel`), the
 threads meet at spin-then-yield barriers (:mod:`etswarm.sim.sync`), and the last thread
-to arrive runs the one-thread work (the controller, grid rebuilds, pass bookkeeping).
+to arrive runs the one-thread work (the controller, grid rebuilds, pass bookkeeping);
+while the controller runs, the other threads build contact lists.
 The default loop is generated and compiled exactly as before.
 
 The directory is ``$ETSWARM_KERNEL_DIR`` if set, else ``~/.cache/etswarm/kernels``
@@ -84,8 +85,8 @@ from numba import njit, prange
 
 from etswarm.sim.parallel import (
     CS_CONT, CS_DONE, CS_STOP, collide_after_pass, collide_begin, collide_end,
-    collide_strips_grab, grid_sync_flags, move_finish, move_part, radio_count,
-    radio_file_part, radio_list_part,
+    collide_strips_grab, control_begin, control_done, grid_sync_flags, move_finish,
+    move_part, prebuild_lists, radio_count, radio_file_part, radio_list_part,
 )
 from etswarm.sim.sync import arrive, atomic_load, release
 
@@ -108,9 +109,16 @@ def thread_ticks(p, n, tick0, cfg, grid, pos, heading, motor, led, alive, presen
         radio_file_part(p, tick, cfg, grid, pos, alive, present, tx_phase, out_on, out_type,
                         out_data, in_count, in_type, in_data, in_dist, counters, scratch)
         if arrive(sync, parts):
+            # this thread runs the controller; the others build contact lists meanwhile
             radio_count(counters, scratch)
+            control_begin(scratch)
+            release(sync)
             controller_step(tick, alive, in_count, in_type, in_data, in_dist, motor, led,
                             out_on, out_type, out_data, mem, rng_ctl)
+            control_done(scratch)
+        else:
+            prebuild_lists(p, cfg, grid, scratch)
+        if arrive(sync, parts):
             release(sync)
         move_part(p, tick, cfg, grid, pos, heading, motor, alive, present, speed, turn_rate,
                   flags, trig, scratch)

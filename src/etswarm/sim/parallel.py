@@ -76,7 +76,7 @@ from etswarm.sim.neighbours import (
     new_epoch,
 )
 from etswarm.sim.prefetch import prefetch
-from etswarm.sim.sync import atomic_add
+from etswarm.sim.sync import atomic_add, atomic_load
 
 #: Strips per colour in the collision phase (strips = 2 * STRIP_PAIRS at most).
 STRIP_PAIRS = 8
@@ -98,7 +98,9 @@ _TO_UNIT = 1.0 / 9007199254740992.0  # 2^-53
 PN_SENT, PN_LOST, PN_BAD, PN_DELIVERED, PN_OVERFLOW, PN_STALE, PN_DRIFT = 0, 1, 2, 3, 4, 5, 6
 #: entries of ThreadScratch.cstate
 CS_CUR, CS_PASSES, CS_PUSHES, CS_EXAMINED, CS_PENDING, CS_CONT, CS_STRIPS, CS_STALE = range(8)
-CS_STOP, CS_DONE, CS_GRAB0, CS_GRAB1 = 8, 9, 10, 11
+CS_STOP, CS_DONE, CS_GRAB0, CS_GRAB1, CS_CTL, CS_BUILD = 8, 9, 10, 11, 12, 13
+#: Slots a thread takes at a time when it builds contact lists during the control phase.
+PREBUILD_CHUNK = 16
 
 #: columns of ThreadScratch.strip_out
 SO_EXAMINED, SO_PUSHES, SO_FLAGGED, SO_STALE, SO_DRIFT = 0, 1, 2, 3, 4
@@ -116,7 +118,7 @@ class ThreadScratch(NamedTuple):
     ``rx_d`` (N, RX_MAX) float32 mm: receivers and distances of the sender in the same
     row of ``senders``; ``rx_n`` (N,) int32: how many; ``part_n`` (T, 8) int64 per-part
     counts (columns ``PN_*``); ``sync`` (2,) int64 the barrier's state
-    (:mod:`etswarm.sim.sync`); ``cstate`` (12,) int64 the collision phase's state
+    (:mod:`etswarm.sim.sync`); ``cstate`` (14,) int64 the collision phase's state
     between passes and the tick loop's flags (``CS_*``); ``strips`` (2 P + 1,) int64 slot
     bounds of the strips; ``strip_out`` (2 P, 5) int64 per-strip
     results; ``near`` (T, N) uint32, ``near_d2`` (T, N) float64 and ``work`` (T, N) int32
@@ -153,7 +155,7 @@ def make_scratch(n: int, threads: int, key: int) -> ThreadScratch:
         senders=np.zeros(n, dtype=np.int32),
         part_n=np.zeros((t, 8), dtype=np.int64),
         sync=np.zeros(2, dtype=np.int64),
-        cstate=np.zeros(12, dtype=np.int64),
+        cstate=np.zeros(14, dtype=np.int64),
         strips=np.zeros(2 * STRIP_PAIRS + 1, dtype=np.int64),
         strip_out=np.zeros((2 * STRIP_PAIRS, 5), dtype=np.int64),
         near=np.zeros((t, n), dtype=np.uint32),
@@ -716,7 +718,8 @@ def _collide_strip(lo, hi, cur_bit, nxt_bit, lists_ok, cfg, grid, pos, motor, fl
                 near_epoch[a] = epoch
             n_list = near_n[a]
         if n_list >= 0:
-            n_over, own = list_overlaps(near_slots[a], n_list, xi, yi, own, near2, contact2,
+            n_over, own = list_overlaps(near_slots[a], n_list, False, xi, yi, own, near2,
+                                        contact2,
                                         share_k, resolve2, half_margin, sx, sy, budget, near)
         else:
             n_over, own = gather_overlaps(a, xi, yi, own, reach, near2, contact2, share_k,
@@ -904,8 +907,59 @@ def collide_end(grid, pos, present, flags, counters, scr):
     if cs[CS_STALE] != 0:
         rebuild_keeping_flags(grid, pos, present, flags, scr.robot_flag)
         cs[CS_STALE] = 0
+    elif grid.state[S_DRIFTED] != 0:
+        new_epoch(grid)  # now, so that lists can be built during the control phase
     counters[4] += cs[CS_PUSHES]
     counters[6] += cs[CS_EXAMINED]
+
+
+# ---------------------------------------------------------------- control phase
+
+
+@njit(cache=True)
+def control_begin(scr):
+    """Before the controller runs on one thread (called by that thread before it lets
+    the others go on to :func:`prebuild_lists`)."""
+    scr.cstate[CS_CTL] = 0
+    scr.cstate[CS_BUILD] = 0
+
+
+@njit(cache=True)
+def control_done(scr):
+    """The controller has returned: threads in :func:`prebuild_lists` stop."""
+    atomic_add(scr.cstate, CS_CTL, 1)
+
+
+@njit(cache=True)
+def prebuild_lists(p, cfg, grid, scr):
+    """While one thread runs the controller (which moves nobody), the others build the
+    contact lists the collision phase would build when it first examines each robot
+    (see :mod:`etswarm.sim.neighbours`), taking PREBUILD_CHUNK slots at a time until
+    the controller returns. Lists are a cache: results do not depend on how many get
+    built here."""
+    cs = scr.cstate
+    if grid.state[S_DRIFTED] != 0:
+        return
+    epoch = grid.state[S_EPOCH]
+    n_filed = grid.start[grid.dims[0] * grid.dims[1]]
+    margin = grid.geom[G_MARGIN]
+    near_r = 2.0 * cfg.radius + margin
+    oy = grid.geom[G_OY]
+    inv = grid.geom[G_INV]
+    sx, sy, sby = grid.sx, grid.sy, grid.sby
+    near_n, near_epoch = grid.near_n, grid.near_epoch
+    buf = scr.near[p]
+    while atomic_load(cs, CS_CTL) == 0:
+        first = atomic_add(cs, CS_BUILD, PREBUILD_CHUNK)
+        if first >= n_filed:
+            return
+        for a in range(first, min(first + PREBUILD_CHUNK, n_filed)):
+            if near_epoch[a] != epoch:
+                # the rows next to its own only, as in the collision strips
+                row_a = np.int64((sby[a] + margin - oy) * inv + 0.5)
+                near_n[a] = build_contact_list(grid, a, sx[a], sy[a], near_r, row_a - 1,
+                                               row_a + 1, buf)
+                near_epoch[a] = epoch
 
 
 @njit(cache=True)
