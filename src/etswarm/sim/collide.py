@@ -134,7 +134,7 @@ def collide_phase(cfg, grid, pos, present, motor, dirty, dirty_flag, n_dirty, sp
                 n_list = near_n[a]
             if n_list >= 0:
                 # the listed slots: the same overlaps and budgets as the cell query
-                n_over, own = list_overlaps(near_slots[a], n_list, True, xi, yi, own, near2,
+                n_over, own = list_overlaps(near_slots[a], n_list, xi, yi, own, near2,
                                             contact2, share_k, resolve2, half_margin, sx, sy,
                                             budget, near)
             else:
@@ -283,39 +283,21 @@ def gather_overlaps(a, xi, yi, own, reach, near2, contact2, share_k, resolve2, o
 
 
 @njit(cache=True, inline="always")
-def _list_entry(s, xi, yi, own, n_over, near2, contact2, share_k, resolve2, half_margin, sx,
-                sy, budget, near):
-    """One entry (slot ``s``) of :func:`list_overlaps`; returns (n_over, own)."""
-    dx = sx[s] - xi
-    dy = sy[s] - yi
-    d2 = dx * dx + dy * dy
-    share = max((d2 - contact2) * share_k, 0.0) if d2 < near2 else half_margin
-    own = min(own, share)
-    budget[s] = min(budget[s], share)
-    near[n_over] = s
-    n_over += d2 < resolve2
-    return n_over, own
-
-
-@njit(cache=True, inline="always")
-def list_overlaps(listed, n_list, padded, xi, yi, own, near2, contact2, share_k, resolve2,
+def list_overlaps(listed, n_list, xi, yi, own, near2, contact2, share_k, resolve2,
                   half_margin, sx, sy, budget, near):
     """:func:`gather_overlaps` from a contact list ``listed[:n_list]`` (slots in slot order,
     a superset of those within contact + margin): the same budgets, the same overlaps in
     the same order. One loop; beyond contact + margin the share is half the margin, which
-    changes no budget (none exceeds it). ``padded``: walk the list in blocks of 4 through
-    its sentinel padding (a loop of fixed length is cheaper than a varying exit, but the
-    sentinel's budget is written: only for one thread)."""
+    changes no budget (none exceeds it)."""
     n_over = 0
-    if padded:
-        for q0 in range(0, (n_list + 3) & ~3, 4):
-            for u in range(4):
-                n_over, own = _list_entry(np.uint32(listed[q0 + u]), xi, yi, own, n_over,
-                                          near2, contact2, share_k, resolve2, half_margin,
-                                          sx, sy, budget, near)
-    else:
-        for q in range(n_list):
-            n_over, own = _list_entry(np.uint32(listed[q]), xi, yi, own, n_over, near2,
-                                      contact2, share_k, resolve2, half_margin, sx, sy,
-                                      budget, near)
+    for q in range(n_list):
+        s = np.uint32(listed[q])
+        dx = sx[s] - xi
+        dy = sy[s] - yi
+        d2 = dx * dx + dy * dy
+        share = max((d2 - contact2) * share_k, 0.0) if d2 < near2 else half_margin
+        own = min(own, share)
+        budget[s] = min(budget[s], share)
+        near[n_over] = s
+        n_over += d2 < resolve2
     return n_over, own

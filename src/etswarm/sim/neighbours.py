@@ -8,15 +8,14 @@ function of the positions only) stores each cell's robots contiguously in "slot"
 with copies of their positions; a row of neighbouring cells is one contiguous slot range.
 
 - ``start``  (C+1,) int32: cell c = cy*nx + cx holds slots ``start[c] .. start[c+1]-1``
-- ``sx``, ``sy`` (N + 1,) float64 mm: position of the robot in each slot (kept current);
-  slot N is a sentinel far away from everything (contact lists are padded with it)
+- ``sx``, ``sy`` (N,) float64 mm: position of the robot in each slot (kept current)
 - ``sidx``   (N,) int32: robot in each slot
 - ``slot``   (N,) int32: slot of each robot, -1 if not filed (absent)
 - ``sbx``, ``sby`` (N,) float64 mm: lower corner of the filed cell minus the margin,
   by slot (the robot's slack box is this corner plus cell + 2 margin)
-- ``budget`` (N + 1,) float64 mm, by slot: how far the robot may still travel before
-  the collision phase must examine it (see :mod:`etswarm.sim.collide`); carried over to
-  the new slots by a rebuild (entry N belongs to the sentinel and means nothing)
+- ``budget`` (N,) float64 mm, by slot: how far the robot may still travel before the
+  collision phase must examine it (see :mod:`etswarm.sim.collide`); carried over to the
+  new slots by a rebuild
 - ``geom``   (7,) float64: minimum cell, margin, cell, 1/cell, origin x, origin y,
   drift (mm)
 - ``dims``   (2,) int64: nx, ny
@@ -88,8 +87,6 @@ S_STALE, S_REBUILDS, S_CARRIED, S_EPOCH, S_DRIFTED = 0, 1, 2, 3, 4
 LIST_CAP = 16
 #: Added to the contact-list radius against rounding (mm).
 LIST_EPS = 0.01
-#: Coordinates (mm) of the sentinel slot N: no robot is ever near it.
-SENTINEL_MM = 1e30
 
 
 def make_grid(n_robots: int, cell_mm: float, margin_mm: float,
@@ -103,13 +100,13 @@ def make_grid(n_robots: int, cell_mm: float, margin_mm: float,
     capacity = max(4096, 8 * n_robots)
     return Grid(
         start=np.zeros(capacity + 1, dtype=np.int32),
-        sx=np.append(np.zeros(n_robots), SENTINEL_MM),
-        sy=np.append(np.zeros(n_robots), SENTINEL_MM),
+        sx=np.zeros(n_robots),
+        sy=np.zeros(n_robots),
         sidx=np.zeros(n_robots, dtype=np.int32),
         slot=np.full(n_robots, -1, dtype=np.int32),
         sbx=np.zeros(n_robots),
         sby=np.zeros(n_robots),
-        budget=np.zeros(n_robots + 1),
+        budget=np.zeros(n_robots),
         geom=np.array([cell_mm, margin_mm, cell_mm, 1.0 / cell_mm, 0.0, 0.0, drift_mm]),
         dims=np.ones(2, dtype=np.int64),
         state=np.zeros(5, dtype=np.int64),
@@ -235,8 +232,7 @@ def drifted(grid, s, x, y, drift2):
 def build_contact_list(grid, a, xi, yi, near_r, row_lo, row_hi, buf):
     """Write the contact list of slot ``a`` at (xi, yi): every other filed slot within
     ``near_r`` + 4 drift (+ LIST_EPS) mm, in slot order, scanning cell rows clipped to
-    ``row_lo`` .. ``row_hi``, followed by the sentinel slot up to a multiple of 4
-    entries. Returns its length, or -1 if it holds more than LIST_CAP.
+    ``row_lo`` .. ``row_hi``. Returns its length, or -1 if it holds more than LIST_CAP.
     ``buf`` (N,) uint32 scratch (the scan keeps slots without branching on distances)."""
     start, sx, sy = grid.start, grid.sx, grid.sy
     margin = grid.geom[G_MARGIN]
@@ -263,9 +259,6 @@ def build_contact_list(grid, a, xi, yi, near_r, row_lo, row_hi, buf):
     out = grid.near_slots[a]
     for q in range(count):
         out[q] = buf[q]
-    # padded with the sentinel slot to a multiple of 4 (see list_overlaps)
-    for q in range(count, (count + 3) & ~3):
-        out[q] = grid.sidx.shape[0]
     return count
 
 

@@ -718,8 +718,7 @@ def _collide_strip(lo, hi, cur_bit, nxt_bit, lists_ok, cfg, grid, pos, motor, fl
                 near_epoch[a] = epoch
             n_list = near_n[a]
         if n_list >= 0:
-            n_over, own = list_overlaps(near_slots[a], n_list, False, xi, yi, own, near2,
-                                        contact2,
+            n_over, own = list_overlaps(near_slots[a], n_list, xi, yi, own, near2, contact2,
                                         share_k, resolve2, half_margin, sx, sy, budget, near)
         else:
             n_over, own = gather_overlaps(a, xi, yi, own, reach, near2, contact2, share_k,
