@@ -67,7 +67,13 @@ def test_the_window_widens_pair_and_balance_tolerances() -> None:
 
 @pytest.mark.parametrize(
     ("field", "value"),
-    [("creep", "maybe"), ("orbit", "left"), ("second_ring", "yes"), ("hole_memory", "1")],
+    [
+        ("creep", "maybe"),
+        ("orbit", "left"),
+        ("second_ring", "yes"),
+        ("hole_memory", "1"),
+        ("pocket", ""),
+    ],
 )
 def test_search_options_are_checked(field: str, value: str) -> None:
     with pytest.raises(EtswarmError, match=field):
@@ -103,6 +109,7 @@ def test_the_papers_search_is_a_command_line_option() -> None:
 
     args = ["triangle", "--seed", "3", "--max-time", "3600", "--json"]
     papers = ["--no-creep", "--orbit", "bounce", "--no-second-ring", "--no-hole-memory"]
+    papers.append("--no-pocket")
     paper = CliRunner().invoke(run_command, [*args, *papers])
     assert paper.exit_code == 0, paper.output
     ours = CliRunner().invoke(run_command, args)

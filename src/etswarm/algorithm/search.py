@@ -60,6 +60,7 @@ from etswarm.algorithm.params import (
     C_CREEP,
     C_HOLE_MEMORY,
     C_ORBIT_BOUNCE,
+    C_POCKET,
     C_SECOND_RING,
     C_TICKS_COOLDOWN,
     C_TICKS_MOVE_FRESH,
@@ -75,7 +76,8 @@ from etswarm.algorithm.params import (
     F_SPACING,
     F_YIELD_DIST,
 )
-from etswarm.algorithm.site_memory import remember_heard, shuts_in
+from etswarm.algorithm.pocket import POCKET_AFTER_TICKS, pocket_site
+from etswarm.algorithm.site_memory import is_held, remember_heard, shuts_in, site_taken
 
 #: Readings of a searching robot older than this (ticks) are ignored for steering.
 SEARCHER_FRESH_TICKS = 31
@@ -123,23 +125,6 @@ def begin_search(i, tick, ri):  # type: ignore[no-untyped-def]
     ri[i, R_CREEP_UNTIL] = 0
     ri[i, R_LOST_SINCE] = 0
     ri[i, R_TOWARD_SINCE] = tick
-
-
-@njit
-def site_taken(i, x, y, nb):  # type: ignore[no-untyped-def]
-    """Robot i knows that site (x, y) is held: a placed robot in its table holds it (placed
-    robots stay put), or a placed robot next to it reports that neighbour site held."""
-    for j in range(nb.shape[1]):
-        if nb[i, j, NB_ID] < 0 or not is_placed(nb[i, j, NB_STATE]):
-            continue
-        jx = nb[i, j, NB_TX]
-        jy = nb[i, j, NB_TY]
-        if jx == x and jy == y:
-            return True
-        k = direction_index(x - jx, y - jy)
-        if k >= 0 and (nb[i, j, NB_MASK] >> k) & 1:
-            return True
-    return False
 
 
 @njit
@@ -374,6 +359,8 @@ def find_site(  # type: ignore[no-untyped-def]
                 c2y = ay + DIR_Y[k2]
                 if gene_at(gene_flag, ci, cx, cy) != 1 or site_taken(i, cx, cy, nb):
                     continue
+                if hole_memory and is_held(held_i, cx, cy, ox, oy):
+                    continue  # heard held before: its holder is elsewhere, the lattice torn
                 # Keep the free sites reachable from outside; in a hole that is closed
                 # already, a robot that got in may take any site.
                 if not hole_memory and (
@@ -505,9 +492,12 @@ def search_rule(  # type: ignore[no-untyped-def]
     # A searcher that has been at the shape for long widens its tolerances: it may be
     # squeezed where the lattice is distorted and never stand within the tight window.
     widen = 1.0
+    pocket = False
     if ri[i, R_SHAPE_SINCE] > 0:
         at_shape = tick - ri[i, R_SHAPE_SINCE] + 1
         widen = 1.0 + (WIDEN_MAX - 1.0) * min(1.0, at_shape / WIDEN_TICKS)
+        # Long at the shape, it may also take a site from the robots round it (``pocket``).
+        pocket = ci[C_POCKET] == 1 and at_shape >= POCKET_AFTER_TICKS
     if ri[i, R_SUB] == SUB_SETTLE:
         motor[i] = STOP
         if tick - ri[i, R_SUB_SINCE] < ci[C_TICKS_SETTLE]:
@@ -520,7 +510,14 @@ def search_rule(  # type: ignore[no-untyped-def]
             i, tick, since, True, ref, orbit, nb, nb_dist, gene_flag, ci, cf, widen, wide_min,
             held_i, ox, oy,
         )
-        if found and cx == ri[i, R_CAND_X] and cy == ri[i, R_CAND_Y]:
+        same = found and cx == ri[i, R_CAND_X] and cy == ri[i, R_CAND_Y]
+        if not same and pocket:
+            found, cx, cy, min_ts = pocket_site(
+                i, tick, since, nb, nb_dist, gene_flag, ci, cf, held_i, ox, oy
+            )
+            same = found and cx == ri[i, R_CAND_X] and cy == ri[i, R_CAND_Y]
+            same = same and not reported_but_unheard(i, cx, cy, since, nb)
+        if same:
             set_state(i, ri, INACTIVE, tick)
             ri[i, R_TAG_X] = cx
             ri[i, R_TAG_Y] = cy
@@ -565,6 +562,10 @@ def search_rule(  # type: ignore[no-untyped-def]
             i, tick, since, False, ref, orbit, nb, nb_dist, gene_flag, ci, cf, widen, wide_min,
             held_i, ox, oy,
         )
+        if not found and pocket:
+            found, cx, cy, min_ts = pocket_site(
+                i, tick, tick - steer_fresh, nb, nb_dist, gene_flag, ci, cf, held_i, ox, oy
+            )
         if found:
             motor[i] = STOP
             ri[i, R_SUB] = SUB_SETTLE

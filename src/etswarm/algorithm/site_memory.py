@@ -13,7 +13,8 @@ SLOT_WX, SLOT_WY) is one step below and left of its least tags, so every site of
 shape and its neighbours fit; tags outside the window are never remembered. The memory
 is cleared when the robot starts searching for a new target epoch (``R_HELD_EPOCH``).
 Placed robots do not leave their sites within an epoch, so what was heard stays true
-until damage, and damage starts a new epoch.
+until damage, and damage starts a new epoch. ``site_taken`` is the narrower knowledge of
+the neighbour table alone (robots heard lately and the sites they report held).
 """
 
 from __future__ import annotations
@@ -21,7 +22,7 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
-from etswarm.algorithm.kernel_util import DIR_X, DIR_Y, gene_at, is_placed
+from etswarm.algorithm.kernel_util import DIR_X, DIR_Y, direction_index, gene_at, is_placed
 from etswarm.algorithm.memory import (
     NB_EPOCH,
     NB_ID,
@@ -37,6 +38,23 @@ from etswarm.algorithm.memory import (
 #: A free site must keep this many consecutive free neighbour sites to stay reachable
 #: by a robot that keeps about d from every placed robot.
 OPENING_SITES = 2
+
+
+@njit
+def site_taken(i, x, y, nb):  # type: ignore[no-untyped-def]
+    """Robot i knows that site (x, y) is held: a placed robot in its table holds it (placed
+    robots stay put), or a placed robot next to it reports that neighbour site held."""
+    for j in range(nb.shape[1]):
+        if nb[i, j, NB_ID] < 0 or not is_placed(nb[i, j, NB_STATE]):
+            continue
+        jx = nb[i, j, NB_TX]
+        jy = nb[i, j, NB_TY]
+        if jx == x and jy == y:
+            return True
+        k = direction_index(x - jx, y - jy)
+        if k >= 0 and (nb[i, j, NB_MASK] >> k) & 1:
+            return True
+    return False
 
 
 @njit(inline="always")
