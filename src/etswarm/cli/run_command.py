@@ -40,10 +40,10 @@ from etswarm.algorithm.layout import LAYOUTS
               help="Before taking a site, searchers check the whole shape for a hole it would "
                    "close, from every site they heard held (--no-hole-memory: only the sites "
                    "within three steps that they hear now).")
-@click.option("--pocket/--no-pocket", default=True, show_default=True,
-              help="A searcher 10 minutes at the shape may take a free site from the placed "
-                   "robots all round it where the lattice has stretched (--no-pocket: only "
-                   "from two references at d, as in the paper).")
+@click.option("--pocket/--no-pocket", default=False, show_default=True,
+              help="A searcher 10 minutes at the shape may also take a free site from the "
+                   "placed robots all round it where the lattice has stretched (experimental: "
+                   "more compact shapes form, but starfish runs ended with shared tags).")
 @click.option("--fit", is_flag=True, help="With fewer robots than cells, form scale(shape, N).")
 @click.option("--damage", "damage", multiple=True, metavar="SPEC",
               help="Damage 'KIND REGION [at=TIME]', e.g. 'split x=0' (repeatable).")
