@@ -7,6 +7,10 @@ and the number of runs that ended with a tag held by two robots.
 
     .venv/bin/python benchmarks/bench_et.py speed [--seconds 600]
     .venv/bin/python benchmarks/bench_et.py formation [--seeds 20] [--shapes T,dumbbell,starfish]
+        [--jobs 2]
+
+With ``--jobs J`` the formation runs go to J worker processes (one per core: the wall
+times stay per run, as long as nothing else loads the machine).
 """
 
 from __future__ import annotations
@@ -16,7 +20,9 @@ import os
 import statistics
 import tempfile
 import time
+from concurrent.futures import ProcessPoolExecutor
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 
@@ -64,8 +70,19 @@ def speed(seconds: float) -> None:
         )
 
 
-def formation(seeds: int, shapes: list[str], max_time_s: float) -> None:
-    print(f"load average {os.getloadavg()}")
+def formation_run(shape: str, seed: int, max_time_s: float) -> dict[str, Any]:
+    """The summary of one formation run."""
+    return ETRun(RunConfig(shape=shape, seed=seed, max_time_s=max_time_s)).run()
+
+
+def formation(seeds: int, shapes: list[str], max_time_s: float, jobs: int) -> None:
+    print(f"load average {os.getloadavg()}, {jobs} job(s)")
+    with ProcessPoolExecutor(max_workers=jobs) as pool:
+        futures = {
+            (shape, seed): pool.submit(formation_run, shape, seed, max_time_s)
+            for shape in shapes
+            for seed in range(seeds)
+        }
     print(
         f"{'shape':>10} {'formed':>8} {'median sim (min)':>17} {'median wall (s)':>16} "
         f"{'median jaccard':>15} {'shared tags':>12}"
@@ -73,7 +90,7 @@ def formation(seeds: int, shapes: list[str], max_time_s: float) -> None:
     for shape in shapes:
         times, walls, jac, formed, shared = [], [], [], 0, 0
         for seed in range(seeds):
-            s = ETRun(RunConfig(shape=shape, seed=seed, max_time_s=max_time_s)).run()
+            s = futures[shape, seed].result()
             formed += s["formed"]
             if s["formed"]:
                 times.append(s["formation_time_s"] / 60)
@@ -94,11 +111,12 @@ def main() -> None:
     parser.add_argument("--seeds", type=int, default=20)
     parser.add_argument("--shapes", default="T,dumbbell,starfish")
     parser.add_argument("--max-time", type=float, default=4 * 3600.0)
+    parser.add_argument("--jobs", type=int, default=1, help="worker processes (formation)")
     args = parser.parse_args()
     if args.what == "speed":
         speed(args.seconds)
     else:
-        formation(args.seeds, args.shapes.split(","), args.max_time)
+        formation(args.seeds, args.shapes.split(","), args.max_time, args.jobs)
 
 
 if __name__ == "__main__":

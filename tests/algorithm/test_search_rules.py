@@ -13,6 +13,8 @@ from etswarm.algorithm.states import State
 from etswarm.errors import EtswarmError
 
 RING = [(0, 1), (1, 1), (1, 0), (0, -1), (-1, -1), (-1, 0)]
+#: An empty memory of held sites (window, origin) for ``find_site``: nothing remembered.
+NO_MEMORY = (np.zeros((9, 9), dtype=np.uint8), -4, -4)
 
 
 def hexagon_world(held: list[tuple[int, int]]):  # type: ignore[no-untyped-def]
@@ -64,7 +66,14 @@ def test_the_window_widens_pair_and_balance_tolerances() -> None:
 
 
 @pytest.mark.parametrize(
-    ("field", "value"), [("creep", "maybe"), ("orbit", "left"), ("second_ring", "yes")]
+    ("field", "value"),
+    [
+        ("creep", "maybe"),
+        ("orbit", "left"),
+        ("second_ring", "yes"),
+        ("hole_memory", "1"),
+        ("pocket", ""),
+    ],
 )
 def test_search_options_are_checked(field: str, value: str) -> None:
     with pytest.raises(EtswarmError, match=field):
@@ -99,9 +108,9 @@ def test_the_papers_search_is_a_command_line_option() -> None:
     from etswarm.cli.run_command import run as run_command
 
     args = ["triangle", "--seed", "3", "--max-time", "3600", "--json"]
-    paper = CliRunner().invoke(
-        run_command, [*args, "--no-creep", "--orbit", "bounce", "--no-second-ring"]
-    )
+    papers = ["--no-creep", "--orbit", "bounce", "--no-second-ring", "--no-hole-memory"]
+    papers.append("--no-pocket")  # the default; --pocket is tested in test_pocket
+    paper = CliRunner().invoke(run_command, [*args, *papers])
     assert paper.exit_code == 0, paper.output
     ours = CliRunner().invoke(run_command, args)
     assert ours.exit_code == 0, ours.output
@@ -152,7 +161,9 @@ def test_second_ring_pairs_find_the_site_between_them() -> None:
     # lattice neighbours and finds nothing.
     for option, expected in [("on", (True, 0, 1)), ("off", (False, 0, 0))]:
         gene, ci, cf, nb, nb_dist = two_reference_table(option, holder_heard=False)
-        found, x, y, _ = find_site(0, 10, 0, False, -1, 0, nb, nb_dist, gene, ci, cf, 1.0, 3)
+        found, x, y, _ = find_site(
+            0, 10, 0, False, -1, 0, nb, nb_dist, gene, ci, cf, 1.0, 3, *NO_MEMORY
+        )
         assert (found, x, y) == expected
 
 
@@ -163,10 +174,10 @@ def test_a_site_whose_reported_neighbour_is_not_heard_is_refused_on_settling() -
     # would hear it at about d, so it is somewhere else. Settling (strict), it refuses.
     gene, ci, cf, nb, nb_dist = two_reference_table("on", holder_heard=False)
     assert reported_but_unheard(0, 0, 1, 0, nb)
-    found, *_ = find_site(0, 10, 0, True, -1, 0, nb, nb_dist, gene, ci, cf, 1.0, 3)
+    found, *_ = find_site(0, 10, 0, True, -1, 0, nb, nb_dist, gene, ci, cf, 1.0, 3, *NO_MEMORY)
     assert not found
     # Once the holder of (1, 1) is heard too, the site is confirmed.
     gene, ci, cf, nb, nb_dist = two_reference_table("on", holder_heard=True)
     assert not reported_but_unheard(0, 0, 1, 0, nb)
-    found, x, y, _ = find_site(0, 10, 0, True, -1, 0, nb, nb_dist, gene, ci, cf, 1.0, 3)
+    found, x, y, _ = find_site(0, 10, 0, True, -1, 0, nb, nb_dist, gene, ci, cf, 1.0, 3, *NO_MEMORY)
     assert (found, x, y) == (True, 0, 1)

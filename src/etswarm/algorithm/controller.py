@@ -67,6 +67,8 @@ from etswarm.algorithm.memory import (
     R_WALK,
     R_WALK_SEEN,
     SLOT_LIMIT,
+    SLOT_WX,
+    SLOT_WY,
 )
 from etswarm.algorithm.messages import EPOCH_SHIFT, KIND_MASK, MSG_ELECT, MSG_STATUS, MSG_TARGET
 from etswarm.algorithm.params import (
@@ -249,7 +251,7 @@ def et_step(  # type: ignore[no-untyped-def]
     rng,
 ):
     """One control tick for every robot (simulator fast-path contract)."""
-    stop, ri, nb, nb_dist, gene_flag, gene_nn, slot_info, ci, cf, walk_seen = mem
+    stop, ri, nb, nb_dist, gene_flag, gene_nn, slot_info, ci, cf, walk_seen, held = mem
     n = ri.shape[0]
     every = ci[C_EVAL_EVERY]
     for i in range(n):
@@ -288,7 +290,8 @@ def et_step(  # type: ignore[no-untyped-def]
                 election_rule(i, tick, ri, nb, ci, stop)
         elif state == SEARCH:
             search_rule(
-                i, tick, new_msgs, ri, nb, nb_dist, motor, gene_flag[slot], gene_nn[slot], ci, cf
+                i, tick, new_msgs, ri, nb, nb_dist, motor, gene_flag[slot], gene_nn[slot], ci,
+                cf, held, slot_info[slot, SLOT_WX], slot_info[slot, SLOT_WY],
             )
         elif not due:
             continue

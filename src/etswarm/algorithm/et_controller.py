@@ -74,6 +74,10 @@ class ETController:
         # it; a placeholder when the census is by spanning tree).
         walk_grid = self.grid_shape if et.census == "walk" else (1, 1)
         self.walk_seen = np.zeros((n_robots, *walk_grid), dtype=np.uint8)
+        # Each searcher's memory of the sites it heard held (see ``site_memory``): a window
+        # of the original's extent plus one site round it (scaled targets are smaller).
+        held_grid = (int(span[0] + 2), int(span[1] + 2)) if et.hole_memory == "on" else (1, 1)
+        self.held = np.zeros((n_robots, *held_grid), dtype=np.uint8)
         self.add_target(target, release_limit=max(0, len(target) - 3), tx=0, ty=0)
 
     # -- targets -----------------------------------------------------------------------
@@ -96,12 +100,15 @@ class ETController:
                 [self.slot_info, np.zeros((grow, SLOT_FIELDS), dtype=np.int64)]
             )
         cells = np.asarray(cells, dtype=np.int64).reshape(-1, 2)
+        window = (0, 0)
         if len(cells):
+            lo = cells.min(axis=0) - 1
+            window = (int(lo[0]), int(lo[1]))
             gx = cells[:, 0] - self.x0
             gy = cells[:, 1] - self.y0
             self.gene_flag[slot, gx, gy] = 1
             self.gene_nn[slot, gx, gy] = neighbour_counts(cells)
-        self.slot_info[slot] = (len(cells), release_limit, tx, ty, 1)
+        self.slot_info[slot] = (len(cells), release_limit, tx, ty, 1, *window)
         self.slot_cells.append(cells)
         return slot
 
@@ -123,6 +130,7 @@ class ETController:
             self.ci,
             self.cf,
             self.walk_seen,
+            self.held,
         )
 
     def seed(self, layout: Layout) -> None:

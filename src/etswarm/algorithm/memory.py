@@ -5,7 +5,7 @@ A robot's memory is one row of ``ri`` (int64 fields) plus its neighbour table, o
 memory only; the controller never reads another robot's row.
 
 ``mem`` passed to the simulator is the tuple
-``(stop, ri, nb, nb_dist, gene_flag, gene_nn, slot_info, ci, cf, walk_seen)``:
+``(stop, ri, nb, nb_dist, gene_flag, gene_nn, slot_info, ci, cf, walk_seen, held)``:
 
 - ``stop``       (1,) int64: nonzero asks the simulator to end the chunk (host work needed)
 - ``ri``         (N, R_FIELDS) int64: the fields ``R_*`` below
@@ -20,6 +20,8 @@ memory only; the controller never reads another robot's row.
 - ``ci``, ``cf``: packed constants (see ``params``)
 - ``walk_seen``  (N, GX, GY) uint8: per robot, the tags it collected walking round its
   remnant as Leader (census ``walk``; grid as the genes'); (N, 1, 1) when census ``tree``
+- ``held``       (N, WX, WY) uint8: per searching robot, the sites it has heard held (see
+  ``site_memory``; a window of the original shape's extent plus one site on every side)
 """
 
 from __future__ import annotations
@@ -97,7 +99,8 @@ R_ON_SHAPE = 62  # 1 once a searcher steered by a placed robot since it last tur
 R_CREEP_UNTIL = 63  # a searcher near a free site creeps (stop-and-go) until this tick
 R_SHAPE_SINCE = 64  # 1 + tick a searcher first heard a placed robot (0: not yet)
 R_TOWARD_SINCE = 65  # a searcher has pivoted towards the group (never away) since this tick
-R_FIELDS = 66
+R_HELD_EPOCH = 66  # 1 + the target epoch the searcher's memory of held sites is for (0: none)
+R_FIELDS = 67
 
 PHASE_NORMAL = 0
 PHASE_ELECTING = 1
@@ -129,7 +132,9 @@ SLOT_LIMIT = 1  # robots the repository releases for it
 SLOT_TX = 2  # translation of scale(bitmap, n) (tags)
 SLOT_TY = 3
 SLOT_USED = 4  # 1 when the slot holds a target
-SLOT_FIELDS = 5
+SLOT_WX = 5  # origin of the searchers' memory window (see ``site_memory``): least tag - 1
+SLOT_WY = 6
+SLOT_FIELDS = 7
 
 #: Neighbour-table slots per robot (a lattice site has 6 neighbours and 6 at ~1.73 d).
 NB_SLOTS = 16

@@ -31,7 +31,9 @@ C_TICKS_WALK_MAX = 15  # the census walk gives up after this long
 C_ORBIT_BOUNCE = 16  # 1: a searcher turns back where the shape ends and the repository begins
 C_CREEP = 17  # 1: a searcher near a free site moves stop-and-go
 C_SECOND_RING = 18  # 1: two references sqrt(3) d apart also locate a site (between them)
-N_CI = 19
+C_HOLE_MEMORY = 19  # 1: the hole test uses the searcher's memory of held sites
+C_POCKET = 20  # 1: a searcher long at the shape may take a site from the robots round it
+N_CI = 21
 
 F_SPACING = 0  # lattice spacing d
 F_PAIR_TOL = 1  # two references within this of d trigger a site candidate
@@ -97,6 +99,15 @@ class ETParams:
     #: Localise also from two placed robots of the second ring (sqrt(3) d apart, the site
     #: between them) ("on"), or only from lattice neighbours as in the paper ("off").
     second_ring: str = "on"
+    #: Before taking a site, check the whole shape for a hole it would close, from the
+    #: searcher's memory of every site it has heard held since it began searching ("on"),
+    #: or only the sites within three steps, from the robots it hears now ("off").
+    hole_memory: str = "on"
+    #: A searcher that has been at the shape for 10 minutes may also take a free site from
+    #: the placed robots all round it where the lattice has stretched ("on", see
+    #: ``pocket``), or only from two references at d ("off", the paper). Off by default:
+    #: on starfish it led to shared tags (3 runs in 20).
+    pocket: str = "off"
 
     def __post_init__(self) -> None:
         for f in fields(self):
@@ -104,7 +115,7 @@ class ETParams:
             if f.name == "census":
                 if value not in CENSUS_METHODS:
                     raise EtswarmError(f"census must be one of {CENSUS_METHODS}, got {value!r}")
-            elif f.name in ("creep", "second_ring"):
+            elif f.name in ("creep", "second_ring", "hole_memory", "pocket"):
                 if value not in ("on", "off"):
                     raise EtswarmError(f"{f.name} must be 'on' or 'off', got {value!r}")
             elif f.name == "orbit":
@@ -155,6 +166,8 @@ class ETParams:
         ci[C_ORBIT_BOUNCE] = 1 if self.orbit == "bounce" else 0
         ci[C_CREEP] = 1 if self.creep == "on" else 0
         ci[C_SECOND_RING] = 1 if self.second_ring == "on" else 0
+        ci[C_HOLE_MEMORY] = 1 if self.hole_memory == "on" else 0
+        ci[C_POCKET] = 1 if self.pocket == "on" else 0
         cf = np.zeros(N_CF, dtype=np.float64)
         cf[F_SPACING] = self.spacing_mm
         cf[F_PAIR_TOL] = self.pair_tol_mm

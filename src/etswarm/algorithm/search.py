@@ -58,7 +58,9 @@ from etswarm.algorithm.memory import (
 )
 from etswarm.algorithm.params import (
     C_CREEP,
+    C_HOLE_MEMORY,
     C_ORBIT_BOUNCE,
+    C_POCKET,
     C_SECOND_RING,
     C_TICKS_COOLDOWN,
     C_TICKS_MOVE_FRESH,
@@ -74,6 +76,8 @@ from etswarm.algorithm.params import (
     F_SPACING,
     F_YIELD_DIST,
 )
+from etswarm.algorithm.pocket import POCKET_AFTER_TICKS, pocket_site
+from etswarm.algorithm.site_memory import is_held, remember_heard, shuts_in, site_taken
 
 #: Readings of a searching robot older than this (ticks) are ignored for steering.
 SEARCHER_FRESH_TICKS = 31
@@ -121,23 +125,6 @@ def begin_search(i, tick, ri):  # type: ignore[no-untyped-def]
     ri[i, R_CREEP_UNTIL] = 0
     ri[i, R_LOST_SINCE] = 0
     ri[i, R_TOWARD_SINCE] = tick
-
-
-@njit
-def site_taken(i, x, y, nb):  # type: ignore[no-untyped-def]
-    """Robot i knows that site (x, y) is held: a placed robot in its table holds it (placed
-    robots stay put), or a placed robot next to it reports that neighbour site held."""
-    for j in range(nb.shape[1]):
-        if nb[i, j, NB_ID] < 0 or not is_placed(nb[i, j, NB_STATE]):
-            continue
-        jx = nb[i, j, NB_TX]
-        jy = nb[i, j, NB_TY]
-        if jx == x and jy == y:
-            return True
-        k = direction_index(x - jx, y - jy)
-        if k >= 0 and (nb[i, j, NB_MASK] >> k) & 1:
-            return True
-    return False
 
 
 @njit
@@ -288,7 +275,8 @@ def closes_a_hole(i, cx, cy, nb, gene_flag, ci):  # type: ignore[no-untyped-def]
 
 @njit
 def find_site(  # type: ignore[no-untyped-def]
-    i, tick, since, strict, ref_id, orbit, nb, nb_dist, gene_flag, ci, cf, tol_scale, wide_min
+    i, tick, since, strict, ref_id, orbit, nb, nb_dist, gene_flag, ci, cf, tol_scale, wide_min,
+    held_i, ox, oy,
 ):
     """Localise robot i from its placed neighbours (paper Sec. 4.1).
 
@@ -303,7 +291,9 @@ def find_site(  # type: ignore[no-untyped-def]
     ``since`` and, when ``strict``, every known robot of a neighbouring site must have
     been heard since ``since``; and
     an Active robot must be adjacent to it (the least TS among them is returned); and
-    taking it must not shut a free shape site next to it in (``encloses_a_site``).
+    taking it must not shut a free shape site next to it in: with ``C_HOLE_MEMORY`` by the
+    robot's memory ``held_i`` ((WX, WY) window at tag (ox, oy), see ``site_memory``) over the
+    whole shape, else from the robots it hears (``encloses_a_site``, ``closes_a_hole``).
     ``tol_scale`` widens the pair and balance tolerances; a candidate gets the wider window
     only when at least ``wide_min`` placed robots of its neighbour sites were heard (a
     pocket, where the site is hard to mistake), else the plain one.
@@ -314,6 +304,7 @@ def find_site(  # type: ignore[no-untyped-def]
     pair_tol = cf[F_PAIR_TOL] * tol_scale
     consist_tol = cf[F_CONSIST_TOL]
     second_ring = ci[C_SECOND_RING]
+    hole_memory = ci[C_HOLE_MEMORY] == 1
     fresh = ci[C_TICKS_NB_FRESH]
     slots = nb.shape[1]
     best_err = FAR
@@ -368,9 +359,11 @@ def find_site(  # type: ignore[no-untyped-def]
                 c2y = ay + DIR_Y[k2]
                 if gene_at(gene_flag, ci, cx, cy) != 1 or site_taken(i, cx, cy, nb):
                     continue
+                if hole_memory and is_held(held_i, cx, cy, ox, oy):
+                    continue  # heard held before: its holder is elsewhere, the lattice torn
                 # Keep the free sites reachable from outside; in a hole that is closed
                 # already, a robot that got in may take any site.
-                if (
+                if not hole_memory and (
                     encloses_a_site(i, cx, cy, nb, gene_flag, ci)
                     or closes_a_hole(i, cx, cy, nb, gene_flag, ci)
                 ) and open_from(i, cx, cy, 0, 0, False, nb, gene_flag, ci):
@@ -412,6 +405,8 @@ def find_site(  # type: ignore[no-untyped-def]
                 if ok and tol_scale > 1.0 and n_adjacent < wide_min:
                     ok = in_window(nb_dist[i, a], nb_dist[i, b], d, cf, 1.0)
                 if ok and ruled_out_mirror and min_ts >= 0 and err < best_err:
+                    if hole_memory and shuts_in(cx, cy, held_i, ox, oy, gene_flag, ci):
+                        continue
                     best_err = err
                     best_x = cx
                     best_y = cy
@@ -420,8 +415,16 @@ def find_site(  # type: ignore[no-untyped-def]
 
 
 @njit
-def search_rule(i, tick, new_msgs, ri, nb, nb_dist, motor, gene_flag, gene_nn, ci, cf):  # type: ignore[no-untyped-def]
-    """Edge-follow the group clockwise at about d, yield, settle on a free site."""
+def search_rule(  # type: ignore[no-untyped-def]
+    i, tick, new_msgs, ri, nb, nb_dist, motor, gene_flag, gene_nn, ci, cf, held, ox, oy
+):
+    """Edge-follow the group clockwise at about d, yield, settle on a free site.
+
+    ``held`` (N, WX, WY) uint8: the searchers' memories of held sites, window origin at tag
+    (ox, oy) (see ``site_memory``)."""
+    if new_msgs and ci[C_HOLE_MEMORY] == 1:
+        remember_heard(i, tick, ri, nb, held, ox, oy)
+    held_i = held[i]
     d = cf[F_SPACING]
     steer_fresh = ci[C_TICKS_MOVE_FRESH]
     closing = cf[F_CLOSING]
@@ -489,9 +492,12 @@ def search_rule(i, tick, new_msgs, ri, nb, nb_dist, motor, gene_flag, gene_nn, c
     # A searcher that has been at the shape for long widens its tolerances: it may be
     # squeezed where the lattice is distorted and never stand within the tight window.
     widen = 1.0
+    pocket = False
     if ri[i, R_SHAPE_SINCE] > 0:
         at_shape = tick - ri[i, R_SHAPE_SINCE] + 1
         widen = 1.0 + (WIDEN_MAX - 1.0) * min(1.0, at_shape / WIDEN_TICKS)
+        # Long at the shape, it may also take a site from the robots round it (``pocket``).
+        pocket = ci[C_POCKET] == 1 and at_shape >= POCKET_AFTER_TICKS
     if ri[i, R_SUB] == SUB_SETTLE:
         motor[i] = STOP
         if tick - ri[i, R_SUB_SINCE] < ci[C_TICKS_SETTLE]:
@@ -501,9 +507,17 @@ def search_rule(i, tick, new_msgs, ri, nb, nb_dist, motor, gene_flag, gene_nn, c
         orbit = ri[i, R_ORBIT]
         wide_min = WIDE_MIN_NEIGHBOURS
         found, cx, cy, min_ts = find_site(
-            i, tick, since, True, ref, orbit, nb, nb_dist, gene_flag, ci, cf, widen, wide_min
+            i, tick, since, True, ref, orbit, nb, nb_dist, gene_flag, ci, cf, widen, wide_min,
+            held_i, ox, oy,
         )
-        if found and cx == ri[i, R_CAND_X] and cy == ri[i, R_CAND_Y]:
+        same = found and cx == ri[i, R_CAND_X] and cy == ri[i, R_CAND_Y]
+        if not same and pocket:
+            found, cx, cy, min_ts = pocket_site(
+                i, tick, since, nb, nb_dist, gene_flag, ci, cf, held_i, ox, oy
+            )
+            same = found and cx == ri[i, R_CAND_X] and cy == ri[i, R_CAND_Y]
+            same = same and not reported_but_unheard(i, cx, cy, since, nb)
+        if same:
             set_state(i, ri, INACTIVE, tick)
             ri[i, R_TAG_X] = cx
             ri[i, R_TAG_Y] = cy
@@ -545,8 +559,13 @@ def search_rule(i, tick, new_msgs, ri, nb, nb_dist, motor, gene_flag, gene_nn, c
             since = tick + 1  # moving: no capture
         wide_min = WIDE_MIN_NEIGHBOURS
         found, cx, cy, min_ts = find_site(
-            i, tick, since, False, ref, orbit, nb, nb_dist, gene_flag, ci, cf, widen, wide_min
+            i, tick, since, False, ref, orbit, nb, nb_dist, gene_flag, ci, cf, widen, wide_min,
+            held_i, ox, oy,
         )
+        if not found and pocket:
+            found, cx, cy, min_ts = pocket_site(
+                i, tick, tick - steer_fresh, nb, nb_dist, gene_flag, ci, cf, held_i, ox, oy
+            )
         if found:
             motor[i] = STOP
             ri[i, R_SUB] = SUB_SETTLE
@@ -558,7 +577,7 @@ def search_rule(i, tick, new_msgs, ri, nb, nb_dist, motor, gene_flag, gene_nn, c
             recent = tick - steer_fresh
             near, _, _, _ = find_site(
                 i, tick, recent, False, ref, orbit, nb, nb_dist, gene_flag, ci, cf,
-                CREEP_TOL_SCALE, 0,
+                CREEP_TOL_SCALE, 0, held_i, ox, oy,
             )
             if near:
                 ri[i, R_CREEP_UNTIL] = tick + CREEP_HOLD_TICKS

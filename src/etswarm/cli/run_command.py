@@ -36,6 +36,14 @@ from etswarm.algorithm.layout import LAYOUTS
 @click.option("--second-ring/--no-second-ring", default=True, show_default=True,
               help="Searchers also locate a site from two placed robots sqrt(3) d apart "
                    "(--no-second-ring: only from lattice neighbours, as in the paper).")
+@click.option("--hole-memory/--no-hole-memory", default=True, show_default=True,
+              help="Before taking a site, searchers check the whole shape for a hole it would "
+                   "close, from every site they heard held (--no-hole-memory: only the sites "
+                   "within three steps that they hear now).")
+@click.option("--pocket/--no-pocket", default=False, show_default=True,
+              help="A searcher 10 minutes at the shape may also take a free site from the "
+                   "placed robots all round it where the lattice has stretched (experimental: "
+                   "more compact shapes form, but starfish runs ended with shared tags).")
 @click.option("--fit", is_flag=True, help="With fewer robots than cells, form scale(shape, N).")
 @click.option("--damage", "damage", multiple=True, metavar="SPEC",
               help="Damage 'KIND REGION [at=TIME]', e.g. 'split x=0' (repeatable).")
@@ -51,7 +59,7 @@ from etswarm.algorithm.layout import LAYOUTS
 @click.option("--json", "as_json", is_flag=True, help="Print only the JSON summary.")
 def run(shape: str, robots: int | None, seed: int, loss: float, noise: float, max_time: float,
         layout: str, release_interval: float | None, census: str, orbit: str, creep: bool,
-        second_ring: bool, fit: bool,
+        second_ring: bool, hole_memory: bool, pocket: bool, fit: bool,
         damage: tuple[str, ...],
         out: Path | None, video: Path | None, fps: float, speedup: float, snapshots: bool,
         as_json: bool) -> None:
@@ -66,7 +74,9 @@ def run(shape: str, robots: int | None, seed: int, loss: float, noise: float, ma
     if video is not None and video.suffix.lower() not in (".mp4", ".gif"):
         raise EtswarmError(f"--video {video}: the file must end in .mp4 or .gif")
     et = ETParams(orbit=orbit, creep="on" if creep else "off",
-                  second_ring="on" if second_ring else "off")
+                  second_ring="on" if second_ring else "off",
+                  hole_memory="on" if hole_memory else "off",
+                  pocket="on" if pocket else "off")
     if release_interval is not None:
         et = replace(et, release_interval_s=release_interval)
     config = RunConfig(shape=shape, robots=robots, seed=seed, loss=loss, noise_mm=noise,

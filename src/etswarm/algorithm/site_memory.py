@@ -1,0 +1,184 @@
+"""A searching robot's memory of the sites it has heard held, and the hole test on it.
+
+A searcher orbits the growing shape and hears, one after another, most of the robots on
+its edge; each status message also reports which of the sender's six neighbour sites are
+held. The robot keeps all of it in a bitmap over the target's tags (Kilobot-sized: one
+byte per site of a window round the shape), so that before it takes a site it can check
+the whole shape for a hole, not just the few sites round it that it hears at that moment.
+
+Memory of robot i: ``held[i]``, (WX, WY) uint8, ``held[i, x - ox, y - oy]`` = 1 when robot
+i heard, while searching for its current target, a placed robot at tag (x, y) or one that
+reported (x, y) held. The window origin ``(ox, oy)`` of a target (``slot_info`` fields
+SLOT_WX, SLOT_WY) is one step below and left of its least tags, so every site of the
+shape and its neighbours fit; tags outside the window are never remembered. The memory
+is cleared when the robot starts searching for a new target epoch (``R_HELD_EPOCH``).
+Placed robots do not leave their sites within an epoch, so what was heard stays true
+until damage, and damage starts a new epoch. ``site_taken`` is the narrower knowledge of
+the neighbour table alone (robots heard lately and the sites they report held).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from numba import njit
+
+from etswarm.algorithm.kernel_util import DIR_X, DIR_Y, direction_index, gene_at, is_placed
+from etswarm.algorithm.memory import (
+    NB_EPOCH,
+    NB_ID,
+    NB_LAST,
+    NB_MASK,
+    NB_STATE,
+    NB_TX,
+    NB_TY,
+    R_EPOCH,
+    R_HELD_EPOCH,
+)
+
+#: A free site must keep this many consecutive free neighbour sites to stay reachable
+#: by a robot that keeps about d from every placed robot.
+OPENING_SITES = 2
+
+
+@njit
+def site_taken(i, x, y, nb):  # type: ignore[no-untyped-def]
+    """Robot i knows that site (x, y) is held: a placed robot in its table holds it (placed
+    robots stay put), or a placed robot next to it reports that neighbour site held."""
+    for j in range(nb.shape[1]):
+        if nb[i, j, NB_ID] < 0 or not is_placed(nb[i, j, NB_STATE]):
+            continue
+        jx = nb[i, j, NB_TX]
+        jy = nb[i, j, NB_TY]
+        if jx == x and jy == y:
+            return True
+        k = direction_index(x - jx, y - jy)
+        if k >= 0 and (nb[i, j, NB_MASK] >> k) & 1:
+            return True
+    return False
+
+
+@njit(inline="always")
+def mark(held_i, x, y, ox, oy):  # type: ignore[no-untyped-def]
+    """Set tag (x, y) in one robot's window ``held_i`` (WX, WY) if it lies inside."""
+    wx = x - ox
+    wy = y - oy
+    if 0 <= wx < held_i.shape[0] and 0 <= wy < held_i.shape[1]:
+        held_i[wx, wy] = 1
+
+
+@njit(inline="always")
+def is_held(held_i, x, y, ox, oy):  # type: ignore[no-untyped-def]
+    """Tag (x, y) is remembered held (tags outside the window are not)."""
+    wx = x - ox
+    wy = y - oy
+    if 0 <= wx < held_i.shape[0] and 0 <= wy < held_i.shape[1]:
+        return held_i[wx, wy] != 0
+    return False
+
+
+@njit
+def remember_heard(i, tick, ri, nb, held, ox, oy):  # type: ignore[no-untyped-def]
+    """Add to robot i's memory the placed robots of its target epoch heard this tick:
+    their tags and the neighbour sites their status reports held. A memory of another
+    epoch is cleared first."""
+    epoch = ri[i, R_EPOCH]
+    held_i = held[i]
+    if ri[i, R_HELD_EPOCH] != epoch + 1:
+        held_i[:, :] = 0
+        ri[i, R_HELD_EPOCH] = epoch + 1
+    for m in range(nb.shape[1]):
+        if nb[i, m, NB_ID] < 0 or nb[i, m, NB_LAST] != tick:
+            continue
+        if not is_placed(nb[i, m, NB_STATE]) or nb[i, m, NB_EPOCH] != epoch:
+            continue
+        x = nb[i, m, NB_TX]
+        y = nb[i, m, NB_TY]
+        mark(held_i, x, y, ox, oy)
+        bits = nb[i, m, NB_MASK]
+        for k in range(6):
+            if (bits >> k) & 1:
+                mark(held_i, x + DIR_X[k], y + DIR_Y[k], ox, oy)
+
+
+@njit
+def reaches_outside(sx, sy, held_i, ox, oy, gene_flag, ci):  # type: ignore[no-untyped-def]
+    """Free shape site (sx, sy) is joined, through shape sites not remembered held, to a
+    site outside the shape (where searching robots come from). Unknown sites count as
+    free. Breadth-first over the window; (WX, WY) scratch."""
+    wx_n = held_i.shape[0]
+    wy_n = held_i.shape[1]
+    seen = np.zeros((wx_n, wy_n), dtype=np.uint8)
+    queue_x = np.empty(wx_n * wy_n, dtype=np.int64)
+    queue_y = np.empty(wx_n * wy_n, dtype=np.int64)
+    if not (0 <= sx - ox < wx_n and 0 <= sy - oy < wy_n):
+        return True
+    seen[sx - ox, sy - oy] = 1
+    queue_x[0] = sx
+    queue_y[0] = sy
+    head = 0
+    tail = 1
+    while head < tail:
+        qx = queue_x[head]
+        qy = queue_y[head]
+        head += 1
+        for k in range(6):
+            nx = qx + DIR_X[k]
+            ny = qy + DIR_Y[k]
+            if gene_at(gene_flag, ci, nx, ny) != 1:
+                return True
+            wx = nx - ox
+            wy = ny - oy
+            if not (0 <= wx < wx_n and 0 <= wy < wy_n):
+                return True  # beyond the window: assume the way open
+            if seen[wx, wy] or held_i[wx, wy]:
+                continue
+            seen[wx, wy] = 1
+            queue_x[tail] = nx
+            queue_y[tail] = ny
+            tail += 1
+    return False
+
+
+@njit
+def narrowed(sx, sy, held_i, ox, oy):  # type: ignore[no-untyped-def]
+    """Free site (sx, sy) has no ``OPENING_SITES`` consecutive neighbour sites that are not
+    remembered held (twice round, so a run may wrap)."""
+    run = 0
+    for q in range(12):
+        if is_held(held_i, sx + DIR_X[q % 6], sy + DIR_Y[q % 6], ox, oy):
+            run = 0
+        else:
+            run += 1
+            if run >= OPENING_SITES:
+                return False
+    return True
+
+
+@njit
+def shuts_in(cx, cy, held_i, ox, oy, gene_flag, ci):  # type: ignore[no-untyped-def]
+    """Taking site (cx, cy) would shut a free shape site next to it in, as far as the
+    memory ``held_i`` tells: the site would be left without an opening of
+    ``OPENING_SITES`` free neighbour sites, or cut off from the outside of the shape. A
+    site that is itself cut off already (the robot got into a closed hole) may be taken.
+    ``held_i`` is restored on return."""
+    inside = is_held(held_i, cx, cy, ox, oy)
+    if inside:
+        return False  # remembered held: the caller rejects it on other grounds
+    if not (0 <= cx - ox < held_i.shape[0] and 0 <= cy - oy < held_i.shape[1]):
+        return False
+    held_i[cx - ox, cy - oy] = 1
+    shut = False
+    for k in range(6):
+        sx = cx + DIR_X[k]
+        sy = cy + DIR_Y[k]
+        if gene_at(gene_flag, ci, sx, sy) != 1 or is_held(held_i, sx, sy, ox, oy):
+            continue
+        if narrowed(sx, sy, held_i, ox, oy) or not reaches_outside(
+            sx, sy, held_i, ox, oy, gene_flag, ci
+        ):
+            shut = True
+            break
+    held_i[cx - ox, cy - oy] = 0
+    if shut and not reaches_outside(cx, cy, held_i, ox, oy, gene_flag, ci):
+        return False  # already in a closed hole: fill it
+    return shut
