@@ -23,6 +23,7 @@ from collections import Counter
 from concurrent.futures import ProcessPoolExecutor
 from typing import Any
 
+from etswarm.algorithm.params import ETParams
 from etswarm.algorithm.run import ETRun, RunConfig
 
 CASES = (
@@ -34,9 +35,9 @@ CASES = (
 )
 
 
-def one_run(args: tuple[str, str, str, int, float]) -> dict[str, Any]:
+def one_run(args: tuple[str, str, str, int, float, dict[str, str]]) -> dict[str, Any]:
     """Run one case with one seed and census method; return its JSON summary."""
-    shape, damage, census, seed, max_time = args
+    shape, damage, census, seed, max_time, et_options = args
     name, _, robots = shape.partition("/")
     config = RunConfig(
         shape=name,
@@ -46,6 +47,7 @@ def one_run(args: tuple[str, str, str, int, float]) -> dict[str, Any]:
         max_time_s=max_time,
         damage=(damage,),
         census=census,
+        et=ETParams(**et_options),
     )
     return ETRun(config).run()
 
@@ -108,6 +110,18 @@ def parse_case(text: str) -> tuple[str, str]:
     return shape, damage
 
 
+def parse_option(text: str) -> tuple[str, str]:
+    """``NAME=VALUE`` for ``--et``; only ETParams' text options are accepted."""
+    name, _, value = text.partition("=")
+    choices = {
+        "census", "orbit", "creep", "second_ring", "hole_memory", "pocket",
+        "release_order",
+    }
+    if name not in choices or not value:
+        raise argparse.ArgumentTypeError(f"--et {text!r}: expected NAME=VALUE, NAME in {choices}")
+    return name, value
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__)
     parser.add_argument("--seeds", type=int, default=10)
@@ -118,7 +132,12 @@ def main() -> None:
     parser.add_argument(
         "--case", type=parse_case, action="append", default=None, metavar="SHAPE:DAMAGE"
     )
+    parser.add_argument(
+        "--et", type=parse_option, action="append", default=[], metavar="NAME=VALUE",
+        help="An ETParams option for every run, e.g. release_order=id (repeatable).",
+    )
     args = parser.parse_args()
+    et_options = dict(args.et)
     methods = ("tree", "walk") if args.census == "both" else (args.census,)
     cases = args.case or list(CASES)
     print(f"load average {os.getloadavg()}")
@@ -127,7 +146,7 @@ def main() -> None:
     with ProcessPoolExecutor(max_workers=args.jobs) as pool:
         for shape, damage in cases:
             for census in methods:
-                work = [(shape, damage, census, seed, args.max_time) for seed in seeds]
+                work = [(shape, damage, census, seed, args.max_time, et_options) for seed in seeds]
                 runs = list(pool.map(one_run, work))
                 print(report(shape, damage, census, args.seeds, runs), flush=True)
 

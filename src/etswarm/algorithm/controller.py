@@ -33,6 +33,7 @@ from etswarm.algorithm.memory import (
     NB_EPARENT,
     NB_EPOCH,
     NB_ESUB,
+    NB_HOPS,
     NB_ID,
     NB_LAST,
     NB_MASK,
@@ -46,7 +47,6 @@ from etswarm.algorithm.memory import (
     PHASE_NORMAL,
     R_ADOPTED_AT,
     R_EPOCH,
-    R_FLOOR,
     R_HOP,
     R_LEADER,
     R_MASK,
@@ -58,6 +58,7 @@ from etswarm.algorithm.memory import (
     R_PHASE,
     R_QMIN,
     R_RELEASED,
+    R_SHAPE_HOPS,
     R_STATE,
     R_SUBCOUNT,
     R_TAG_X,
@@ -179,6 +180,7 @@ def ingest(i, k, tick, ri, in_type, in_data, in_dist, nb, nb_dist):  # type: ign
         nb[i, slot, NB_MASK] = int(in_data[i, k, 7])
     else:
         nb[i, slot, NB_RELEASED] = int(in_data[i, k, 7]) | (int(in_data[i, k, 8]) << 8)
+        nb[i, slot, NB_HOPS] = int(in_data[i, k, 5])
     return kind
 
 
@@ -227,9 +229,8 @@ def encode(i, tick, ri, out_on, out_type, out_data):  # type: ignore[no-untyped-
     else:
         out_data[i, 3] = ri[i, R_QMIN] & 0xFF
         out_data[i, 4] = (ri[i, R_QMIN] >> 8) & 0xFF
-        floor1 = ri[i, R_FLOOR] + 1
-        out_data[i, 5] = floor1 & 0xFF
-        out_data[i, 6] = (floor1 >> 8) & 0xFF
+        out_data[i, 5] = min(ri[i, R_SHAPE_HOPS], 255)
+        out_data[i, 6] = 0
         out_data[i, 7] = ri[i, R_RELEASED] & 0xFF
         out_data[i, 8] = (ri[i, R_RELEASED] >> 8) & 0xFF
 

@@ -100,7 +100,8 @@ R_CREEP_UNTIL = 63  # a searcher near a free site creeps (stop-and-go) until thi
 R_SHAPE_SINCE = 64  # 1 + tick a searcher first heard a placed robot (0: not yet)
 R_TOWARD_SINCE = 65  # a searcher has pivoted towards the group (never away) since this tick
 R_HELD_EPOCH = 66  # 1 + the target epoch the searcher's memory of held sites is for (0: none)
-R_FIELDS = 67
+R_SHAPE_HOPS = 67  # a Queued robot's hops to the target's placed robots (regenerated remnants)
+R_FIELDS = 68
 
 PHASE_NORMAL = 0
 PHASE_ELECTING = 1
@@ -125,7 +126,8 @@ NB_EPARENT = 12  # election: its parent
 NB_ESUB = 13  # election: its subtree count
 NB_ELAST = 14  # tick of its last election message
 NB_EPOCH = 15  # the target epoch the robot works for (from its status message's type)
-NB_FIELDS = 16
+NB_HOPS = 16  # a Queued robot's hops to the target's placed robots (``release``)
+NB_FIELDS = 17
 
 SLOT_N = 0  # cells of the target
 SLOT_LIMIT = 1  # robots the repository releases for it

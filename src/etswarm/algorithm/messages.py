@@ -11,7 +11,9 @@ byte   placed robot (Inactive ..   Queued / Search robot
 2      state code (see states)     state code
 3      tag X (int8)                lowest Queued ID heard, low byte
 4      tag Y (int8)                lowest Queued ID heard, high byte
-5-6    timestep TS (uint16)        last released ID + 1 (uint16; 0 = none)
+5-6    timestep TS (uint16)        5: hops to the robots placed on the
+                                   target (after a regeneration, see
+                                   ``release``; 255 = no way known); 6: 0
 7      neighbour-site bits (bit k  robots released so far, low byte
        = a robot holds the site in
        lattice direction k)

@@ -33,7 +33,8 @@ C_CREEP = 17  # 1: a searcher near a free site moves stop-and-go
 C_SECOND_RING = 18  # 1: two references sqrt(3) d apart also locate a site (between them)
 C_HOLE_MEMORY = 19  # 1: the hole test uses the searcher's memory of held sites
 C_POCKET = 20  # 1: a searcher long at the shape may take a site from the robots round it
-N_CI = 21
+C_RELEASE_FAR = 21  # 1: a regenerated remnant releases its Queued robots farthest first
+N_CI = 22
 
 F_SPACING = 0  # lattice spacing d
 F_PAIR_TOL = 1  # two references within this of d trigger a site candidate
@@ -108,6 +109,10 @@ class ETParams:
     #: ``pocket``), or only from two references at d ("off", the paper). Off by default:
     #: on starfish it led to shared tags (3 runs in 20).
     pocket: str = "off"
+    #: Which Queued robot of a regenerated remnant leaves first: the one farthest (in
+    #: hops) from the scaled shape's robots ("far"), so the repository stays connected to
+    #: the shape, or the lowest ID, as at the start ("id", the paper). See ``release``.
+    release_order: str = "far"
 
     def __post_init__(self) -> None:
         for f in fields(self):
@@ -118,6 +123,9 @@ class ETParams:
             elif f.name in ("creep", "second_ring", "hole_memory", "pocket"):
                 if value not in ("on", "off"):
                     raise EtswarmError(f"{f.name} must be 'on' or 'off', got {value!r}")
+            elif f.name == "release_order":
+                if value not in ("far", "id"):
+                    raise EtswarmError(f"release_order must be 'far' or 'id', got {value!r}")
             elif f.name == "orbit":
                 if value not in ORBIT_MODES:
                     raise EtswarmError(f"orbit must be one of {ORBIT_MODES}, got {value!r}")
@@ -168,6 +176,7 @@ class ETParams:
         ci[C_SECOND_RING] = 1 if self.second_ring == "on" else 0
         ci[C_HOLE_MEMORY] = 1 if self.hole_memory == "on" else 0
         ci[C_POCKET] = 1 if self.pocket == "on" else 0
+        ci[C_RELEASE_FAR] = 1 if self.release_order == "far" else 0
         cf = np.zeros(N_CF, dtype=np.float64)
         cf[F_SPACING] = self.spacing_mm
         cf[F_PAIR_TOL] = self.pair_tol_mm

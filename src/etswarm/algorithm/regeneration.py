@@ -71,6 +71,7 @@ from etswarm.algorithm.memory import (
     R_QMIN_SINCE,
     R_RELEASED,
     R_REQUEST,
+    R_SHAPE_HOPS,
     R_STATE,
     R_SUBCOUNT,
     R_TAG_X,
@@ -85,7 +86,12 @@ from etswarm.algorithm.memory import (
     SLOT_TY,
     SLOT_USED,
 )
-from etswarm.algorithm.params import C_CENSUS_WALK, C_TICKS_NB_FRESH, C_TICKS_REGEN_QUIET
+from etswarm.algorithm.params import (
+    C_CENSUS_WALK,
+    C_TICKS_NB_FRESH,
+    C_TICKS_REGEN_QUIET,
+)
+from etswarm.algorithm.release import HOPS_NONE
 
 #: Ticks a robot keeps relaying a newly adopted target (alternating with its status).
 TARGET_RELAY_TICKS = 31 * 40
@@ -241,6 +247,7 @@ def adopt_target(i, tick, ri, nb, slot, epoch, leader, gene_flag, gene_nn, slot_
         ri[i, R_RELEASED] = 0
         ri[i, R_QMIN] = i
         ri[i, R_QMIN_SINCE] = tick
+        ri[i, R_SHAPE_HOPS] = HOPS_NONE
 
 
 @njit

@@ -1,4 +1,19 @@
-"""Queued robots: lowest-ID release from the repository (paper Table 1, Queued)."""
+"""Queued robots: release from the repository (paper Table 1, Queued).
+
+At the start the Queued robot with the lowest ID leaves first (the paper). After a
+regeneration the robots that are not on the scaled shape turn Queued where they stand, in
+no order of ID, often in a chain away from the shape (the old stem of a ``T``). Lowest-ID
+release then takes robots out of the middle of the chain, and the robots beyond lose
+every link to the shape: traced on ``T`` ``split x=mid`` (10 seeds), in most remnants
+that never re-formed the robots missing from the shape sat in a separate group of Queued
+and searching robots out of range, searchers orbiting a lone Queued robot that never left
+because it kept hearing them. So a regenerated remnant (``C_RELEASE_FAR``) releases the
+robot farthest from the shape first: every Queued robot keeps its hop count to the robots
+placed on the target (1 when it hears one, else one more than the least count heard),
+sends it in its status, and leaves when no Queued robot it hears has a higher count (or
+the same count and a lower ID). A chain is then taken from its far end, as the paper's
+queue is.
+"""
 
 from __future__ import annotations
 
@@ -7,9 +22,11 @@ from numba import njit
 from etswarm.algorithm.kernel_util import (
     QUEUED,
     SEARCH,
+    is_placed,
 )
 from etswarm.algorithm.memory import (
     NB_EPOCH,
+    NB_HOPS,
     NB_ID,
     NB_LAST,
     NB_RELEASED,
@@ -20,14 +37,39 @@ from etswarm.algorithm.memory import (
     R_QMIN,
     R_QMIN_SINCE,
     R_RELEASED,
+    R_SHAPE_HOPS,
 )
 from etswarm.algorithm.params import (
+    C_RELEASE_FAR,
     C_TICKS_CLEAR,
     C_TICKS_NB_FRESH,
     C_TICKS_QUIET,
     C_TICKS_RELEASE,
 )
 from etswarm.algorithm.search import begin_search
+
+#: Hop count of a Queued robot that knows no way to the shape (also the largest count).
+HOPS_NONE = 255
+
+
+@njit
+def shape_hops(i, tick, ri, nb, fresh):  # type: ignore[no-untyped-def]
+    """Robot i's hops to the robots placed on its target: 1 when it heard one within
+    ``fresh`` ticks, else one more than the least count of the Queued robots it heard
+    (``HOPS_NONE`` when none knows a way)."""
+    epoch = ri[i, R_EPOCH]
+    least = HOPS_NONE
+    for m in range(nb.shape[1]):
+        if nb[i, m, NB_ID] < 0 or nb[i, m, NB_EPOCH] != epoch:
+            continue
+        if tick - nb[i, m, NB_LAST] > fresh:
+            continue
+        st = nb[i, m, NB_STATE]
+        if is_placed(st):
+            return 1
+        if st == QUEUED and nb[i, m, NB_HOPS] < least:
+            least = nb[i, m, NB_HOPS]
+    return min(least + 1, HOPS_NONE)
 
 
 @njit
@@ -41,13 +83,19 @@ def queued_rule(i, tick, ri, nb, ci, limit):  # type: ignore[no-untyped-def]
     than ``limit`` robots were released so far (the count floods as a maximum; robots
     beyond the target's needs stay Queued). In a queue sorted by ID this releases the end
     of the queue one robot after another, as in the paper; in a cluster or after a
-    regeneration, robots far apart may leave at the same time.
+    regeneration, robots far apart may leave at the same time. With ``C_RELEASE_FAR``, in
+    a regenerated remnant the robot that leaves is the one with the most hops to the shape
+    among those it hears (ties: the lowest ID), see the module docstring.
     """
     fresh = ci[C_TICKS_NB_FRESH]
     released = ri[i, R_RELEASED]
     last_searcher = -(1 << 40)
     lowest = i
     epoch = ri[i, R_EPOCH]
+    far_first = ci[C_RELEASE_FAR] == 1 and epoch > 0
+    if far_first:
+        ri[i, R_SHAPE_HOPS] = shape_hops(i, tick, ri, nb, fresh)
+    lowest_hops = ri[i, R_SHAPE_HOPS]
     for m in range(nb.shape[1]):
         sid = nb[i, m, NB_ID]
         if sid < 0 or nb[i, m, NB_EPOCH] != epoch:
@@ -58,7 +106,14 @@ def queued_rule(i, tick, ri, nb, ci, limit):  # type: ignore[no-untyped-def]
         if tick - nb[i, m, NB_LAST] > fresh or st > SEARCH:
             continue
         released = max(released, nb[i, m, NB_RELEASED])
-        if st == QUEUED and sid < lowest:
+        if st != QUEUED:
+            continue
+        if far_first:
+            hops = nb[i, m, NB_HOPS]
+            if hops > lowest_hops or (hops == lowest_hops and sid < lowest):
+                lowest = sid
+                lowest_hops = hops
+        elif sid < lowest:
             lowest = sid
     if released != ri[i, R_RELEASED]:
         ri[i, R_RELEASED] = released

@@ -44,6 +44,11 @@ from etswarm.algorithm.layout import LAYOUTS
               help="A searcher 10 minutes at the shape may also take a free site from the "
                    "placed robots all round it where the lattice has stretched (experimental: "
                    "more compact shapes form, but starfish runs ended with shared tags).")
+@click.option("--release-order", type=click.Choice(("far", "id")), default="far",
+              show_default=True,
+              help="After a regeneration, the Queued robot farthest from the scaled shape "
+                   "leaves first, so the rest stay linked to it (id: the lowest ID, as at "
+                   "the start and in the paper).")
 @click.option("--fit", is_flag=True, help="With fewer robots than cells, form scale(shape, N).")
 @click.option("--damage", "damage", multiple=True, metavar="SPEC",
               help="Damage 'KIND REGION [at=TIME]', e.g. 'split x=0' (repeatable).")
@@ -59,7 +64,8 @@ from etswarm.algorithm.layout import LAYOUTS
 @click.option("--json", "as_json", is_flag=True, help="Print only the JSON summary.")
 def run(shape: str, robots: int | None, seed: int, loss: float, noise: float, max_time: float,
         layout: str, release_interval: float | None, census: str, orbit: str, creep: bool,
-        second_ring: bool, hole_memory: bool, pocket: bool, fit: bool,
+        second_ring: bool, hole_memory: bool, pocket: bool, release_order: str,
+        fit: bool,
         damage: tuple[str, ...],
         out: Path | None, video: Path | None, fps: float, speedup: float, snapshots: bool,
         as_json: bool) -> None:
@@ -76,7 +82,8 @@ def run(shape: str, robots: int | None, seed: int, loss: float, noise: float, ma
     et = ETParams(orbit=orbit, creep="on" if creep else "off",
                   second_ring="on" if second_ring else "off",
                   hole_memory="on" if hole_memory else "off",
-                  pocket="on" if pocket else "off")
+                  pocket="on" if pocket else "off",
+                  release_order=release_order)
     if release_interval is not None:
         et = replace(et, release_interval_s=release_interval)
     config = RunConfig(shape=shape, robots=robots, seed=seed, loss=loss, noise_mm=noise,

@@ -1,0 +1,89 @@
+"""Release from the repository: lowest ID at the start, farthest from the shape after a
+regeneration (``release_order``)."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from etswarm.algorithm.memory import (
+    NB_EPOCH,
+    NB_HOPS,
+    NB_ID,
+    NB_LAST,
+    NB_STATE,
+    R_EPOCH,
+    R_QMIN_SINCE,
+    R_SHAPE_HOPS,
+    R_STATE,
+    allocate,
+)
+from etswarm.algorithm.params import ETParams
+from etswarm.algorithm.release import HOPS_NONE, queued_rule, shape_hops
+from etswarm.algorithm.run import ETRun, RunConfig
+from etswarm.algorithm.states import State
+
+TICK = 10_000
+
+
+def hear(nb: np.ndarray, i: int, slot: int, sender: int, state: State, hops: int,
+         epoch: int = 1) -> None:
+    """Robot i heard ``sender`` (in ``state``, ``hops`` to the shape) just now."""
+    nb[i, slot, NB_ID] = sender
+    nb[i, slot, NB_STATE] = state
+    nb[i, slot, NB_HOPS] = hops
+    nb[i, slot, NB_EPOCH] = epoch
+    nb[i, slot, NB_LAST] = TICK
+
+
+def chain(order: str):  # type: ignore[no-untyped-def]
+    """Queued robots 5 - 0 - 7 in a line from a placed robot (ID 9) of epoch 1: robot 5
+    hears the placed robot, 0 hears 5 and 7, 7 hears only 0. Every robot knows the hop
+    counts the others send (5: 1, 0: 2, 7: 3)."""
+    ri, nb, _ = allocate(10)
+    ri[:, R_EPOCH] = 1
+    ri[:, R_QMIN_SINCE] = 0
+    hear(nb, 5, 0, 9, State.STABLE, 0)
+    hear(nb, 5, 1, 0, State.QUEUED, 2)
+    hear(nb, 0, 0, 5, State.QUEUED, 1)
+    hear(nb, 0, 1, 7, State.QUEUED, 3)
+    hear(nb, 7, 0, 0, State.QUEUED, 2)
+    ci, _ = ETParams(release_order=order).pack(31, 0, 0)
+    return ri, nb, ci
+
+
+def test_hop_counts_grow_away_from_the_shape() -> None:
+    ri, nb, ci = chain("far")
+    fresh = int(ci[0])
+    assert shape_hops(5, TICK, ri, nb, fresh) == 1
+    assert shape_hops(0, TICK, ri, nb, fresh) == 2
+    assert shape_hops(7, TICK, ri, nb, fresh) == 3
+    # Readings older than the neighbour timeout say nothing about a way to the shape.
+    assert shape_hops(7, TICK + fresh + 1, ri, nb, fresh) == HOPS_NONE
+
+
+@pytest.mark.parametrize(("order", "leaves"), [("far", 7), ("id", 0)])
+def test_the_far_end_of_a_chain_leaves_first(order: str, leaves: int) -> None:
+    ri, nb, ci = chain(order)
+    for i in (5, 0, 7):
+        queued_rule(i, TICK, ri, nb, ci, 100)
+    left = [i for i in (5, 0, 7) if ri[i, R_STATE] == State.SEARCH]
+    assert left == [leaves]
+    if order == "far":
+        assert [ri[i, R_SHAPE_HOPS] for i in (5, 0, 7)] == [1, 2, 3]
+
+
+def test_a_split_t_regrows_both_remnants_with_far_first_release() -> None:
+    # T seed 0, split through the middle: with lowest-ID release the left remnant's old
+    # stem was taken out of the middle and its far robots were left out of range, so
+    # neither remnant re-formed (four groups at the end).
+    run = ETRun(RunConfig(shape="T", seed=0, max_time_s=4 * 3600, damage=("split x=mid",)))
+    summary = run.run()
+    assert summary["settled"], summary["components"]
+    assert len(summary["components"]) == 2
+    for comp in summary["components"]:
+        assert comp["formed"] and comp["jaccard"] == 1.0, comp
+        assert comp["census_count"] == comp["robots"] == comp["target_cells"], comp
+    assert summary["max_leaders_per_component"] <= 1
+    assert summary["duplicate_tags"] == []
+    assert summary["states"]["Danger"] == 0 and summary["states"]["Leader"] == 0
