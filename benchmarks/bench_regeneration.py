@@ -115,7 +115,7 @@ def parse_option(text: str) -> tuple[str, str]:
     name, _, value = text.partition("=")
     choices = {
         "census", "orbit", "creep", "second_ring", "hole_memory", "pocket",
-        "release_order",
+        "release_order", "queue_stride", "silent_sites",
     }
     if name not in choices or not value:
         raise argparse.ArgumentTypeError(f"--et {text!r}: expected NAME=VALUE, NAME in {choices}")

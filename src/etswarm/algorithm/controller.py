@@ -71,7 +71,14 @@ from etswarm.algorithm.memory import (
     SLOT_WX,
     SLOT_WY,
 )
-from etswarm.algorithm.messages import EPOCH_SHIFT, KIND_MASK, MSG_ELECT, MSG_STATUS, MSG_TARGET
+from etswarm.algorithm.messages import (
+    EPOCH_SHIFT,
+    KIND_MASK,
+    MSG_ELECT,
+    MSG_SILENT,
+    MSG_STATUS,
+    MSG_TARGET,
+)
 from etswarm.algorithm.params import (
     C_EVAL_EVERY,
 )
@@ -84,6 +91,7 @@ from etswarm.algorithm.regeneration import (
 )
 from etswarm.algorithm.release import queued_rule
 from etswarm.algorithm.search import search_rule
+from etswarm.algorithm.silent import encode_silent, ingest_silent, note_silent, sends_silent
 
 
 @njit
@@ -154,6 +162,10 @@ def ingest(i, k, tick, ri, in_type, in_data, in_dist, nb, nb_dist):  # type: ign
             # It still elects for a target this robot has adopted: relay the announcement.
             ri[i, R_ADOPTED_AT] = tick
         return kind
+    if kind == MSG_SILENT:
+        wrapped = int(in_type[i, k]) >> EPOCH_SHIFT
+        ingest_silent(i, k, tick, ri, in_data, near_epoch(ri[i, R_EPOCH] + 1, wrapped, 32))
+        return kind
     if kind == MSG_TARGET:
         epoch = near_epoch(ri[i, R_EPOCH] + 1, int(in_data[i, k, 2]), 256)
         if epoch > ri[i, R_PEND_EPOCH]:
@@ -194,6 +206,9 @@ def encode(i, tick, ri, out_on, out_type, out_data):  # type: ignore[no-untyped-
     out_data[i, 0] = i & 0xFF
     out_data[i, 1] = (i >> 8) & 0xFF
     if ri[i, R_PHASE] == PHASE_ELECTING and not ((tick // 15) % 2 and sends_tag(i, tick, ri)):
+        if sends_silent(i, tick, ri):
+            encode_silent(i, ri, out_type, out_data)
+            return
         epoch = ri[i, R_EPOCH] + 1
         out_type[i] = MSG_ELECT | ((epoch & 31) << EPOCH_SHIFT)
         out_data[i, 2] = ri[i, R_LEADER] & 0xFF
@@ -288,6 +303,7 @@ def et_step(  # type: ignore[no-untyped-def]
             if not due:
                 continue
             if not announcement_rule(i, tick, ri, nb, gene_flag, gene_nn, slot_info, ci):
+                note_silent(i, tick, ri, nb, ci)
                 election_rule(i, tick, ri, nb, ci, stop)
         elif state == SEARCH:
             search_rule(

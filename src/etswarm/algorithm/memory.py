@@ -101,7 +101,12 @@ R_SHAPE_SINCE = 64  # 1 + tick a searcher first heard a placed robot (0: not yet
 R_TOWARD_SINCE = 65  # a searcher has pivoted towards the group (never away) since this tick
 R_HELD_EPOCH = 66  # 1 + the target epoch the searcher's memory of held sites is for (0: none)
 R_SHAPE_HOPS = 67  # a Queued robot's hops to the target's placed robots (regenerated remnants)
-R_FIELDS = 68
+R_SILENT_N = 68  # how many silent sites the robot knows of (``silent``)
+R_SILENT_NEXT = 69  # the next of them to send
+R_SILENT_ADDED = 70  # tick it last learnt of a new one
+R_SILENT0 = 71  # the first of SILENT_MAX fields: silent sites' tags (``silent.pack_tag``)
+SILENT_MAX = 8
+R_FIELDS = R_SILENT0 + SILENT_MAX
 
 PHASE_NORMAL = 0
 PHASE_ELECTING = 1

@@ -27,6 +27,10 @@ is adopted): 0-1 robot ID, 2 epoch, 3-4 n (cells of scale(bitmap, n)), 5 tx, 6 t
 translation, tags), 7-8 leader ID. With census ``walk``, electing robots that hold a tag
 send their status instead of their election message every other period while a walking
 Leader (status with state Leader) has been heard lately, so the walker learns their tags.
+Silent-sites message (kind 4; electing robots that know of placed robots that fell
+silent, every third period instead of their election message, see ``silent``): 0-1 robot
+ID, 2 tags that follow (1-3), 3-8 up to three tags (int8 X, Y each); the epoch elected for
+is in the type byte as for an election.
 
 The release count floods as a maximum among Queued robots, so the repository releases
 no more robots than the target needs. ``messages`` holds only constants and
@@ -42,6 +46,7 @@ from numba import njit
 MSG_STATUS = 1
 MSG_ELECT = 2
 MSG_TARGET = 3
+MSG_SILENT = 4
 KIND_MASK = 0x07
 EPOCH_SHIFT = 3
 

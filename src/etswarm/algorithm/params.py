@@ -34,7 +34,9 @@ C_SECOND_RING = 18  # 1: two references sqrt(3) d apart also locate a site (betw
 C_HOLE_MEMORY = 19  # 1: the hole test uses the searcher's memory of held sites
 C_POCKET = 20  # 1: a searcher long at the shape may take a site from the robots round it
 C_RELEASE_FAR = 21  # 1: a regenerated remnant releases its Queued robots farthest first
-N_CI = 22
+C_QUEUE_STRIDE = 22  # 1: along the repository a searcher near its aim drives straight on
+C_SILENT_SITES = 23  # 1: electing robots note and flood the sites that fell silent
+N_CI = 24
 
 F_SPACING = 0  # lattice spacing d
 F_PAIR_TOL = 1  # two references within this of d trigger a site candidate
@@ -113,6 +115,14 @@ class ETParams:
     #: hops) from the scaled shape's robots ("far"), so the repository stays connected to
     #: the shape, or the lowest ID, as at the start ("id", the paper). See ``release``.
     release_order: str = "far"
+    #: Along the repository (no placed robot heard yet) a searcher near its aim drives
+    #: straight on instead of pivoting ("on"), or pivots to and fro as along the shape
+    #: ("off", the paper's edge-following).
+    queue_stride: str = "off"
+    #: While electing, robots note and flood where placed neighbours fell silent, and the
+    #: Leader keeps the scaled target off those sites ("on", see ``silent``), or places it
+    #: from the robots it hears alone ("off").
+    silent_sites: str = "on"
 
     def __post_init__(self) -> None:
         for f in fields(self):
@@ -120,7 +130,9 @@ class ETParams:
             if f.name == "census":
                 if value not in CENSUS_METHODS:
                     raise EtswarmError(f"census must be one of {CENSUS_METHODS}, got {value!r}")
-            elif f.name in ("creep", "second_ring", "hole_memory", "pocket"):
+            elif f.name in (
+                "creep", "second_ring", "hole_memory", "pocket", "queue_stride", "silent_sites"
+            ):
                 if value not in ("on", "off"):
                     raise EtswarmError(f"{f.name} must be 'on' or 'off', got {value!r}")
             elif f.name == "release_order":
@@ -176,6 +188,8 @@ class ETParams:
         ci[C_SECOND_RING] = 1 if self.second_ring == "on" else 0
         ci[C_HOLE_MEMORY] = 1 if self.hole_memory == "on" else 0
         ci[C_POCKET] = 1 if self.pocket == "on" else 0
+        ci[C_QUEUE_STRIDE] = 1 if self.queue_stride == "on" else 0
+        ci[C_SILENT_SITES] = 1 if self.silent_sites == "on" else 0
         ci[C_RELEASE_FAR] = 1 if self.release_order == "far" else 0
         cf = np.zeros(N_CF, dtype=np.float64)
         cf[F_SPACING] = self.spacing_mm

@@ -72,6 +72,7 @@ from etswarm.algorithm.memory import (
     R_RELEASED,
     R_REQUEST,
     R_SHAPE_HOPS,
+    R_SILENT_N,
     R_STATE,
     R_SUBCOUNT,
     R_TAG_X,
@@ -229,6 +230,7 @@ def adopt_target(i, tick, ri, nb, slot, epoch, leader, gene_flag, gene_nn, slot_
     ri[i, R_LEADER] = leader
     ri[i, R_BELOW_SINCE] = -1
     ri[i, R_COUNT] = 0
+    ri[i, R_SILENT_N] = 0  # the silent sites were for this election
     x = ri[i, R_TAG_X]
     y = ri[i, R_TAG_Y]
     if ri[i, R_HAS_TAG] == 1 and gene_at(gene_flag[slot], ci, x, y) == 1:

@@ -28,6 +28,7 @@ from etswarm.algorithm.memory import (
     R_WALK_TAGS,
 )
 from etswarm.algorithm.params import ETParams
+from etswarm.algorithm.silent import silent_tags
 from etswarm.algorithm.states import PLACED_STATES, STATE_NAMES, State
 from etswarm.damage import DamageSpec, apply_damage, parse_damage
 from etswarm.errors import EtswarmError
@@ -242,8 +243,9 @@ class ETRun:
     def _scaled_placement(self, leader: int, n: int) -> tuple[np.ndarray, int, int]:
         """scale(bitmap, n), translated so that it holds the Leader's site and two sites of
         its neighbours that make a seed triangle with it (paper: the Leader and two
-        neighbours are the new seeds), and as many other sites the Leader knows to be
-        held as possible. Empty when n < 3 (too small to seed)."""
+        neighbours are the new seeds), as many other sites the Leader knows to be held as
+        possible and, among those, as few of the sites it knows fell silent (a dead robot
+        may stand there, see ``silent``). Empty when n < 3 (too small to seed)."""
         if n < 3:
             return np.zeros((0, 2), dtype=np.int64), 0, 0
         cells = scale(self.shape, min(n, self.shape.n_cells))
@@ -251,13 +253,14 @@ class ETRun:
         lx, ly = (int(v) for v in ctl.ri[leader, [R_TAG_X, R_TAG_Y]])
         # Robots heard since the election began are the remnant's; older entries left.
         known = ctl.known_tags(leader, int(ctl.ri[leader, R_ELECT_SINCE]))
+        silent = silent_tags(ctl.ri, leader) - known
         offsets = [tuple(int(v) for v in o) for o in NEIGHBOUR_OFFSETS]
         triangles = [
             ((lx + a[0], ly + a[1]), (lx + b[0], ly + b[1]))
             for a, b in zip(offsets, offsets[1:] + offsets[:1], strict=True)
             if (lx + a[0], ly + a[1]) in known and (lx + b[0], ly + b[1]) in known
         ]
-        best: tuple[int, int, int, int, int] | None = None
+        best: tuple[int, int, int, int, int, int] | None = None
         for sx, sy in cells.tolist():
             tx, ty = lx - sx, ly - sy
             moved = cells + np.array([tx, ty])
@@ -266,12 +269,13 @@ class ETRun:
             sites = {(int(x), int(y)) for x, y in moved.tolist()}
             seeded = any(p in sites and q in sites for p, q in triangles)
             kept = len(sites & known)
-            key = (0 if seeded else 1, -kept, abs(tx) + abs(ty), tx, ty)
+            covered = len(sites & silent)
+            key = (0 if seeded else 1, -kept, covered, abs(tx) + abs(ty), tx, ty)
             if best is None or key < best:
                 best = key
         if best is None:
             return cells, 0, 0
-        tx, ty = best[3], best[4]
+        tx, ty = best[4], best[5]
         return cells + np.array([tx, ty]), tx, ty
 
     def _group_of(self, robot: int) -> np.ndarray:

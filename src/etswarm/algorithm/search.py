@@ -61,6 +61,7 @@ from etswarm.algorithm.params import (
     C_HOLE_MEMORY,
     C_ORBIT_BOUNCE,
     C_POCKET,
+    C_QUEUE_STRIDE,
     C_SECOND_RING,
     C_TICKS_COOLDOWN,
     C_TICKS_MOVE_FRESH,
@@ -105,6 +106,9 @@ WIDEN_MAX = 3.0
 WIDEN_TICKS = 31 * 1200
 #: ... but only at a site with at least this many placed neighbours heard.
 WIDE_MIN_NEIGHBOURS = 3
+#: Along the repository (no placed robot heard) a searcher drives straight on while its
+#: reading of the nearest Queued robot is within this of its aim (``C_QUEUE_STRIDE``).
+STRIDE_BAND_MM = 4.0
 CREEP_PERIOD_TICKS = 24
 CREEP_STOP_TICKS = 16
 CREEP_HOLD_TICKS = 62
@@ -596,9 +600,15 @@ def search_rule(  # type: ignore[no-untyped-def]
     clearance = cf[F_CLEARANCE]
     away = LEFT if ri[i, R_ORBIT] == 0 else RIGHT
     toward = RIGHT if ri[i, R_ORBIT] == 0 else LEFT
+    along_repository = placed_slot < 0 and ci[C_QUEUE_STRIDE] == 1
     if obstacle < clearance or nearest < clearance or (not lost and reading < aim):
+        if along_repository and obstacle >= clearance and reading >= aim - STRIDE_BAND_MM:
+            motor[i] = FORWARD  # the repository is no place to settle: stride along it
+            return
         motor[i] = away
         ri[i, R_TOWARD_SINCE] = tick
+    elif along_repository and reading <= aim + STRIDE_BAND_MM:
+        motor[i] = FORWARD
     elif lost:
         motor[i] = lost_motion(tick, ri[i, R_LOST_SINCE] - 1)
     elif tick - ri[i, R_TOWARD_SINCE] > CIRCLING_TICKS and ri[i, R_REF_TREND] < 0:

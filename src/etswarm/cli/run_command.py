@@ -49,6 +49,10 @@ from etswarm.algorithm.layout import LAYOUTS
               help="After a regeneration, the Queued robot farthest from the scaled shape "
                    "leaves first, so the rest stay linked to it (id: the lowest ID, as at "
                    "the start and in the paper).")
+@click.option("--silent-sites/--no-silent-sites", default=True, show_default=True,
+              help="While electing, robots flood where placed neighbours fell silent (dead "
+                   "robots) and the Leader keeps the scaled target off those sites "
+                   "(--no-silent-sites: it places it from the robots it hears alone).")
 @click.option("--fit", is_flag=True, help="With fewer robots than cells, form scale(shape, N).")
 @click.option("--damage", "damage", multiple=True, metavar="SPEC",
               help="Damage 'KIND REGION [at=TIME]', e.g. 'split x=0' (repeatable).")
@@ -65,7 +69,7 @@ from etswarm.algorithm.layout import LAYOUTS
 def run(shape: str, robots: int | None, seed: int, loss: float, noise: float, max_time: float,
         layout: str, release_interval: float | None, census: str, orbit: str, creep: bool,
         second_ring: bool, hole_memory: bool, pocket: bool, release_order: str,
-        fit: bool,
+        silent_sites: bool, fit: bool,
         damage: tuple[str, ...],
         out: Path | None, video: Path | None, fps: float, speedup: float, snapshots: bool,
         as_json: bool) -> None:
@@ -83,7 +87,8 @@ def run(shape: str, robots: int | None, seed: int, loss: float, noise: float, ma
                   second_ring="on" if second_ring else "off",
                   hole_memory="on" if hole_memory else "off",
                   pocket="on" if pocket else "off",
-                  release_order=release_order)
+                  release_order=release_order,
+                  silent_sites="on" if silent_sites else "off")
     if release_interval is not None:
         et = replace(et, release_interval_s=release_interval)
     config = RunConfig(shape=shape, robots=robots, seed=seed, loss=loss, noise_mm=noise,
