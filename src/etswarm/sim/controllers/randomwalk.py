@@ -33,17 +33,18 @@ PREFETCH_AHEAD = 4
 
 
 @njit(cache=True)
-def randomwalk_step(tick, alive, in_count, in_type, in_data, in_dist, motor, led, out_on,
-                    out_type, out_data, mem, rng):
-    """One control tick for all robots (signature: the fast-path controller contract)."""
-    next_move = mem[1]
+def randomwalk_part(lo, hi, tick, alive, in_count, in_type, in_data, in_dist, motor, led,
+                    out_on, out_type, out_data, mem):
+    """The per-robot work of a control tick for robots ``lo .. hi - 1`` (no random draws):
+    hear (refresh or add neighbour-table entries) and, every 8 ticks, refresh the
+    neighbour count and the outgoing message. Touches only those robots' rows, so parts
+    may run on different threads at once (the ``part_step`` of the controller protocol)."""
     nb_id = mem[2]
     nb_seen = mem[3]
     nb_count = mem[4]
     slots = nb_id.shape[1]
-    n = alive.shape[0]
-    for i in range(n):
-        if i + PREFETCH_AHEAD < n:
+    for i in range(lo, hi):
+        if i + PREFETCH_AHEAD < hi:
             # rows of a robot a few places ahead (read only if it heard or refreshes)
             ahead = i + PREFETCH_AHEAD
             prefetch(nb_id, ahead)
@@ -87,8 +88,16 @@ def randomwalk_step(tick, alive, in_count, in_type, in_data, in_dist, motor, led
             out_data[i, 2] = min(count, 255)
             out_on[i] = True
             led[i] = min(count, 255)
-        # move: a new random move every 16..79 ticks
-        if tick >= next_move[i]:
+
+
+@njit(cache=True)
+def randomwalk_rest(tick, alive, in_count, in_type, in_data, in_dist, motor, led, out_on,
+                    out_type, out_data, mem, rng):
+    """The rest of a control tick after :func:`randomwalk_part` ran for every robot: a new
+    random move every 16..79 ticks, drawn in robot order (one thread)."""
+    next_move = mem[1]
+    for i in range(alive.shape[0]):
+        if tick >= next_move[i] and alive[i]:
             u = rng.random()
             if u < 0.5:
                 motor[i] = 1
@@ -99,6 +108,18 @@ def randomwalk_step(tick, alive, in_count, in_type, in_data, in_dist, motor, led
             next_move[i] = tick + 16 + np.int64(rng.random() * 64.0)
 
 
+@njit(cache=True)
+def randomwalk_step(tick, alive, in_count, in_type, in_data, in_dist, motor, led, out_on,
+                    out_type, out_data, mem, rng):
+    """One control tick for all robots (signature: the fast-path controller contract):
+    :func:`randomwalk_part` over all robots, then :func:`randomwalk_rest` (the moves draw
+    from ``rng`` in robot order either way, so splitting changes no result)."""
+    randomwalk_part(0, alive.shape[0], tick, alive, in_count, in_type, in_data, in_dist,
+                    motor, led, out_on, out_type, out_data, mem)
+    randomwalk_rest(tick, alive, in_count, in_type, in_data, in_dist, motor, led, out_on,
+                    out_type, out_data, mem, rng)
+
+
 class RandomWalk:
     """The random-walk controller for ``n`` robots (fast path: ``step`` + ``mem``)."""
 
@@ -106,6 +127,8 @@ class RandomWalk:
 
     def __init__(self, n: int) -> None:
         self.step = randomwalk_step
+        self.part_step = randomwalk_part
+        self.rest_step = randomwalk_rest
         if n > 65536:
             raise ValueError("the random walk encodes IDs in 2 bytes: at most 65536 robots")
         self.mem = (
