@@ -16,8 +16,10 @@ The controller still gets the sequential controller stream (it runs on one threa
 Radio. Pass 1 (one part per thread, by sender index): each sender of this tick lists its
 receivers (slot order, as the serial radio visits them) with their measured distance,
 after the loss draw, in a (N, RX_MAX) buffer row of its own (rows of one part's senders
-are consecutive). Pass 2 (one part per thread, by receiver index): each thread walks all
-senders in index order and files the copies for its own receivers. So every inbox holds
+are consecutive), grouped by the part the receiver belongs to (slot order kept within
+a group), with the sender's message copied. Pass 2 (one part per thread, by receiver
+index): each thread walks all senders in index order and files the copies of its own
+group of each row. So every inbox holds
 its copies in sender order, capped at K exactly as the serial radio does; with no loss
 and no noise the inboxes are identical to the serial radio's. A sender with more than
 RX_MAX receivers in range (only possible when many robots overlap) sends the whole tick
@@ -127,7 +129,9 @@ class ThreadScratch(NamedTuple):
     ``robot_flag`` (N,) uint8 flags by robot while the grid is rebuilt; ``tx_type`` (N,)
     uint8 and ``tx_data`` (N, 9) uint8: the message of the sender in the same row of
     ``senders``, copied in pass 1 (so a controller part may rewrite ``out_*`` of its
-    robots while other threads still file copies).
+    robots while other threads still file copies); ``rx_cut`` (N, T + 1) int32: where
+    each part's receivers begin in the row (pass 1 groups them by part, so a thread
+    reads only its own).
     """
 
     key: np.ndarray
@@ -147,6 +151,7 @@ class ThreadScratch(NamedTuple):
     robot_flag: np.ndarray
     tx_type: np.ndarray
     tx_data: np.ndarray
+    rx_cut: np.ndarray
 
 
 def make_scratch(n: int, threads: int, key: int) -> ThreadScratch:
@@ -170,6 +175,7 @@ def make_scratch(n: int, threads: int, key: int) -> ThreadScratch:
         robot_flag=np.zeros(n, dtype=np.uint8),
         tx_type=np.zeros(n, dtype=np.uint8),
         tx_data=np.zeros((n, 9), dtype=np.uint8),
+        rx_cut=np.zeros((n, t + 1), dtype=np.int32),
     )
 
 
@@ -354,12 +360,38 @@ def _radio_one_thread(tick, cfg, grid, pos, alive, present, tx_phase, out_on, ou
 
 
 @njit(cache=True)
+def _split_by_part(m, listed, n, parts, rx_j, rx_d, rx_cut, tmp_j, tmp_d):
+    """Reorder row ``m``'s ``listed`` receivers by part (robots n q / T .. n (q + 1) / T
+    - 1), keeping their order within a part, and write the part boundaries to
+    ``rx_cut[m, :parts + 1]``; ``tmp_j``, ``tmp_d``: scratch of at least ``listed``."""
+    rx_cut[m, 0] = 0
+    if parts == 1:
+        rx_cut[m, 1] = listed
+        return
+    for k in range(listed):
+        tmp_j[k] = rx_j[m, k]
+        tmp_d[k] = rx_d[m, k]
+    at = 0
+    for q in range(parts):
+        lo = n * q // parts
+        hi = n * (q + 1) // parts
+        for k in range(listed):
+            j = tmp_j[k]
+            rx_j[m, at] = j
+            rx_d[m, at] = tmp_d[k]
+            at += (j >= lo) & (j < hi)
+        rx_cut[m, q + 1] = at
+
+
+@njit(cache=True)
 def _radio_list_part(lo, hi, tick, cfg, grid, pos, alive, present, tx_phase, out_on,
                      out_type, out_data, scr, p):
     """Pass 1 for senders lo..hi-1: list receivers and copy the message; part counts into
     scr.part_n[p]."""
     phase = tick % cfg.tx_period
     key = scr.key[0]
+    n = pos.shape[0]
+    parts = scr.parts[0]
     m = lo
     lost = 0
     bad = 0
@@ -378,6 +410,8 @@ def _radio_list_part(lo, hi, tick, cfg, grid, pos, alive, present, tx_phase, out
             bad = 1
             listed = 0
         scr.rx_n[m] = listed
+        _split_by_part(m, listed, n, parts, scr.rx_j, scr.rx_d, scr.rx_cut, scr.work[p],
+                       scr.near_d2[p])
         m += 1
     scr.part_n[p, PN_SENT] = m - lo
     scr.part_n[p, PN_LOST] = lost
@@ -393,6 +427,7 @@ def _radio_file_part(lo, hi, n, parts, in_count, in_type, in_data, in_dist, scr,
     in_count[lo:hi] = 0
     delivered = 0
     overflow = 0
+    rx_cut = scr.rx_cut
     for q in range(parts):
         first = n * q // parts
         last = first + scr.part_n[q, PN_SENT]
@@ -400,17 +435,15 @@ def _radio_file_part(lo, hi, n, parts, in_count, in_type, in_data, in_dist, scr,
             mtype = scr.tx_type[m]
             if m + 1 < last:
                 # the next sender's receivers here: ask for their inbox rows (scattered)
-                for k in range(scr.rx_n[m + 1]):
+                for k in range(rx_cut[m + 1, p], rx_cut[m + 1, p + 1]):
                     j = scr.rx_j[m + 1, k]
-                    j = j if (j >= lo) & (j < hi) else lo
                     prefetch(in_count, j)
                     prefetch(in_type, j)
                     prefetch(in_data, j)
                     prefetch(in_dist, j)
-            for k in range(scr.rx_n[m]):
+            # this part's receivers of sender row m (pass 1 put them together)
+            for k in range(rx_cut[m, p], rx_cut[m, p + 1]):
                 j = scr.rx_j[m, k]
-                if j < lo or j >= hi:
-                    continue
                 c = in_count[j]
                 if c >= cap:
                     overflow += 1

@@ -57,24 +57,27 @@ def randomwalk_part(lo, hi, tick, alive, in_count, in_type, in_data, in_dist, mo
         for k in range(in_count[i]):
             if in_type[i, k] != MSG_HELLO:
                 continue
-            sender = np.int64(in_data[i, k, 0]) | (np.int64(in_data[i, k, 1]) << 8)
+            sender = np.int32(in_data[i, k, 0]) | (np.int32(in_data[i, k, 1]) << 8)
+            # the entry holding the sender: a scan without early exit (no branch to
+            # mispredict; IDs are unique in a table, so the match is the first one)
+            hit = np.int32(slots)
+            for s in range(slots):
+                hit = min(hit, np.int32(s) if nb_id[i, s] == sender else np.int32(slots))
+            if hit < slots:
+                nb_seen[i, hit] = tick
+                continue
+            # not in the table: the first free or expired entry, else the oldest
             free = -1
             oldest = 0
-            found = False
             for s in range(slots):
-                if nb_id[i, s] == sender:
-                    nb_seen[i, s] = tick
-                    found = True
-                    break
                 if nb_id[i, s] < 0 or tick - nb_seen[i, s] > EXPIRE_TICKS:
                     if free < 0:
                         free = s
                 elif nb_seen[i, s] < nb_seen[i, oldest]:
                     oldest = s
-            if not found:
-                s = free if free >= 0 else oldest
-                nb_id[i, s] = sender
-                nb_seen[i, s] = tick
+            s = free if free >= 0 else oldest
+            nb_id[i, s] = sender
+            nb_seen[i, s] = tick
         # refresh the neighbour count and the outgoing message every 8 ticks
         if (tick + i) & 7 == 0 or not out_on[i]:
             count = 0
