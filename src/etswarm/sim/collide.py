@@ -189,10 +189,12 @@ def collide_phase(cfg, grid, pos, present, motor, dirty, dirty_flag, n_dirty, sp
                 by = sby[s]
                 if xj < bx or xj >= bx + span or yj < by or yj >= by + span:
                     stale = True
-                if dirty_flag[s] == 0:
-                    dirty_flag[s] = 1
+                # listed once: written always, kept if new (no branch to mispredict;
+                # the bound check fails only when every slot is listed)
+                if n_next < n_slots:
                     nxt_list[n_next] = s
-                    n_next += 1
+                n_next += dirty_flag[s] == 0
+                dirty_flag[s] = 1
                 moved_i = True
                 pushes += 1
             i = sidx[a]
@@ -210,10 +212,10 @@ def collide_phase(cfg, grid, pos, present, motor, dirty, dirty_flag, n_dirty, sp
                 by = sby[a]
                 if xi < bx or xi >= bx + span or yi < by or yi >= by + span:
                     stale = True
-                if dirty_flag[a] == 0:
-                    dirty_flag[a] = 1
+                if n_next < n_slots:
                     nxt_list[n_next] = a
-                    n_next += 1
+                n_next += dirty_flag[a] == 0
+                dirty_flag[a] = 1
         if not lists_ok:
             grid.state[S_DRIFTED] = 1
         tmp = cur
@@ -300,7 +302,11 @@ def list_overlaps(near_slots, a, n_list, xi, yi, own, near2, contact2, share_k, 
         dx = sx[s] - xi
         dy = sy[s] - yi
         d2 = dx * dx + dy * dy
-        share = max((d2 - contact2) * share_k, 0.0) if d2 < near2 else half_margin
+        # beyond contact + margin: half the margin, selected by arithmetic that gives
+        # exactly one of the two values (a branch here is mispredicted often)
+        within = np.float64(d2 < near2)
+        share = (within * max((d2 - contact2) * share_k, 0.0)
+                 + (1.0 - within) * half_margin)
         own = min(own, share)
         budget[s] = min(budget[s], share)
         near[n_over] = s

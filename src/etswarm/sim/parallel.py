@@ -815,9 +815,8 @@ def _collide_strip(lo, hi, cur_bit, nxt_bit, lists_ok, cfg, grid, pos, motor, fl
             if xj < bx or xj >= bx + span or yj < by or yj >= by + span:
                 stale = True
             fs = flags[s]
-            if fs & nxt_bit == 0:
-                flags[s] = fs | nxt_bit
-                n_next += 1
+            n_next += (fs & nxt_bit) == 0
+            flags[s] = fs | nxt_bit
             moved_i = True
             pushes += 1
         if not moved_i:
@@ -833,9 +832,8 @@ def _collide_strip(lo, hi, cur_bit, nxt_bit, lists_ok, cfg, grid, pos, motor, fl
             if xi < sbx[a] or xi >= sbx[a] + span or yi < sby[a] or yi >= sby[a] + span:
                 stale = True
             fa = flags[a]
-            if fa & nxt_bit == 0:
-                flags[a] = fa | nxt_bit
-                n_next += 1
+            n_next += (fa & nxt_bit) == 0
+            flags[a] = fa | nxt_bit
     out[SO_EXAMINED] = examined
     out[SO_PUSHES] = pushes
     out[SO_FLAGGED] = n_next
