@@ -80,6 +80,7 @@ from etswarm.sim.neighbours import (
 )
 from etswarm.sim.prefetch import prefetch
 from etswarm.sim.sync import atomic_add, atomic_load
+from etswarm.sim.world import PAYLOAD_BYTES
 
 #: Strips per colour in the collision phase (strips = 2 * STRIP_PAIRS at most).
 STRIP_PAIRS = 8
@@ -449,8 +450,12 @@ def _radio_file_part(lo, hi, n, parts, in_count, in_type, in_data, in_dist, scr,
                     overflow += 1
                     continue
                 in_type[j, c] = mtype
-                for b in range(n_bytes):
-                    in_data[j, c, b] = scr.tx_data[m, b]
+                if n_bytes == PAYLOAD_BYTES:  # a constant count: one unrolled copy
+                    for b in range(PAYLOAD_BYTES):
+                        in_data[j, c, b] = scr.tx_data[m, b]
+                else:
+                    for b in range(n_bytes):
+                        in_data[j, c, b] = scr.tx_data[m, b]
                 in_dist[j, c] = scr.rx_d[m, k]
                 in_count[j] = c + 1
                 delivered += 1
