@@ -12,9 +12,13 @@ pushes per robot-tick) over the timed ticks, since it grows as the swarm cluster
     .venv/bin/python benchmarks/profile_phases.py --threads 2   # the threaded loop
 
 The loop is compiled on every start (about 20 s), not cached. With ``--threads T`` (> 1)
-the threaded tick loop is timed instead (see etswarm.sim.kernel): per thread, the cycles
-of each phase and of waiting at the barriers; a phase that one thread runs alone
-(control, grid upkeep between passes) shows as waiting on the others.
+the threaded tick loop is timed instead, phase for phase as the kernel template in
+etswarm.sim.kernel runs it: per thread, the cycles of each phase and of waiting at the
+barriers. "control" is the controller's part on every thread plus its one-thread rest;
+the contact lists the other threads build meanwhile count as "collide"; work one thread
+does alone between phases (grid rebuilds, strip cuts, pass bookkeeping) is "upkeep",
+and the others wait for it. The cycle counter runs on while a thread is descheduled, so
+on a busy machine every column grows.
 """
 
 from __future__ import annotations
