@@ -21,7 +21,7 @@ from etswarm.sim.controllers.randomwalk import (
     randomwalk_step,
 )
 from etswarm.sim.kernel import load_kernel
-from etswarm.sim.parallel import RX_MAX
+from etswarm.sim.parallel import RX_MAX, no_part_step
 from etswarm.sim.simulator import ThreadChooser
 
 
@@ -121,3 +121,15 @@ def test_part_step_must_be_compiled() -> None:
     with pytest.raises(TypeError, match="part_step and rest_step"):
         load_kernel(randomwalk_step, threaded=True, part_step=lambda *a: None,
                     rest_step=randomwalk_rest)
+
+
+def test_threaded_kernel_binds_the_parts_or_the_whole_step() -> None:
+    # (not called here, so nothing is compiled: only what the generated module holds)
+    whole = load_kernel(randomwalk_step, threaded=True).py_func.__globals__
+    assert whole["controller_part"] is no_part_step
+    assert whole["controller_rest"] is randomwalk_step
+    split = load_kernel(randomwalk_step, threaded=True, part_step=randomwalk_part,
+                        rest_step=randomwalk_rest).py_func.__globals__
+    assert split["controller_part"] is randomwalk_part
+    assert split["controller_rest"] is randomwalk_rest
+    assert whole["__name__"] != split["__name__"]  # two kernels, two cache files
