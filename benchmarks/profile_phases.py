@@ -12,9 +12,13 @@ pushes per robot-tick) over the timed ticks, since it grows as the swarm cluster
     .venv/bin/python benchmarks/profile_phases.py --threads 2   # the threaded loop
 
 The loop is compiled on every start (about 20 s), not cached. With ``--threads T`` (> 1)
-the threaded tick loop is timed instead (see etswarm.sim.kernel): per thread, the cycles
-of each phase and of waiting at the barriers; a phase that one thread runs alone
-(control, grid upkeep between passes) shows as waiting on the others.
+the threaded tick loop is timed instead, phase for phase as the kernel template in
+etswarm.sim.kernel runs it: per thread, the cycles of each phase and of waiting at the
+barriers. "control" is the controller's part on every thread plus its one-thread rest;
+the contact lists the other threads build meanwhile count as "collide"; work one thread
+does alone between phases (grid rebuilds, strip cuts, pass bookkeeping) is "upkeep",
+and the others wait for it. The cycle counter runs on while a thread is descheduled, so
+on a busy machine every column grows.
 """
 
 from __future__ import annotations
@@ -30,25 +34,36 @@ from numba.extending import intrinsic
 
 from etswarm.sim import RandomWalk, SimParams, Simulator, arena_side_for, random_world
 from etswarm.sim.collide import collide_phase
-from etswarm.sim.controllers.randomwalk import randomwalk_step
+from etswarm.sim.controllers.randomwalk import (
+    randomwalk_part,
+    randomwalk_rest,
+    randomwalk_step,
+)
 from etswarm.sim.motion import move_phase
 from etswarm.sim.neighbours import grid_sync
 from etswarm.sim.parallel import (
     CS_CONT,
+    CS_DONE,
+    CS_STOP,
     collide_after_pass,
     collide_begin,
     collide_end,
-    collide_strips,
+    collide_strips_grab,
+    control_begin,
+    control_done,
     grid_sync_flags,
     move_finish,
     move_part,
+    part_bounds,
+    prebuild_lists,
+    radio_bad,
     radio_count,
     radio_file_part,
     radio_list_part,
 )
 from etswarm.sim.radio import radio_phase
 from etswarm.sim.simulator import _NumbaThreads
-from etswarm.sim.sync import atomic_load, barrier
+from etswarm.sim.sync import arrive, atomic_load, release
 
 PHASES = ("radio", "control", "move", "collide")
 #: phases of the threaded loop, per thread ("upkeep": grid rebuilds and strip cuts, pass
@@ -102,74 +117,98 @@ def _timed_ticks(n, tick0, cfg, grid, pos, heading, motor, led, alive, present, 
 def _timed_thread(p, n, tick0, cfg, grid, pos, heading, motor, led, alive, present, speed,
                   turn_rate, tx_phase, out_on, out_type, out_data, in_count, in_type, in_data,
                   in_dist, counters, flags, trig, rng_ctl, mem, scr, cycles):
-    """Thread ``p`` of the threaded loop (etswarm.sim.kernel), ``cycles[p]`` (6,) counting
-    the cycles of MT_PHASES."""
+    """Thread ``p`` of the threaded loop (the template in etswarm.sim.kernel, phase for
+    phase), ``cycles[p]`` (6,) counting the cycles of MT_PHASES. The last thread to
+    arrive at a barrier does the one-thread work ("upkeep"; the controller counts as
+    "control"); the others' contact-list building during the controller counts as
+    "collide"."""
     parts = scr.parts[0]
     sync = scr.sync
     cs = scr.cstate
     c = cycles[p]
+    lo, hi = part_bounds(p, pos.shape[0], scr)
     for k in range(n):
         tick = tick0 + k
-        t = _cycles()
-        radio_list_part(p, tick, cfg, grid, pos, alive, present, tx_phase, out_on, scr)
+        t0 = _cycles()
+        radio_list_part(p, tick, cfg, grid, pos, alive, present, tx_phase, out_on, out_type,
+                        out_data, scr)
         t1 = _cycles()
-        barrier(sync, parts)
+        if arrive(sync, parts):
+            release(sync)
         t2 = _cycles()
         radio_file_part(p, tick, cfg, grid, pos, alive, present, tx_phase, out_on, out_type,
                         out_data, in_count, in_type, in_data, in_dist, counters, scr)
         t3 = _cycles()
-        barrier(sync, parts)
+        bad = radio_bad(scr)
+        if not bad:
+            randomwalk_part(lo, hi, tick, alive, in_count, in_type, in_data, in_dist, motor,
+                            led, out_on, out_type, out_data, mem)
         t4 = _cycles()
-        c[0] += (t1 - t) + (t3 - t2)
-        c[5] += (t2 - t1) + (t4 - t3)
-        if p == 0:
+        c[0] += (t1 - t0) + (t3 - t2)
+        c[1] += t4 - t3
+        c[5] += t2 - t1
+        if arrive(sync, parts):
+            t45 = _cycles()
             radio_count(counters, scr)
-            randomwalk_step(tick, alive, in_count, in_type, in_data, in_dist, motor, led,
+            control_begin(scr)
+            release(sync)
+            if bad:
+                randomwalk_part(0, pos.shape[0], tick, alive, in_count, in_type, in_data,
+                                in_dist, motor, led, out_on, out_type, out_data, mem)
+            randomwalk_rest(tick, alive, in_count, in_type, in_data, in_dist, motor, led,
                             out_on, out_type, out_data, mem, rng_ctl)
-        t5 = _cycles()
-        barrier(sync, parts)
+            control_done(scr)
+            t5 = _cycles()
+            c[5] += t45 - t4
+            c[1] += t5 - t45
+        else:
+            t45 = _cycles()
+            prebuild_lists(p, cfg, grid, scr)
+            t5 = _cycles()
+            c[5] += t45 - t4
+            c[3] += t5 - t45
+        if arrive(sync, parts):
+            release(sync)
         t6 = _cycles()
         move_part(p, tick, cfg, grid, pos, heading, motor, alive, present, speed, turn_rate,
                   flags, trig, scr)
         t7 = _cycles()
-        barrier(sync, parts)
-        t8 = _cycles()
-        if p == 0:
+        c[5] += t6 - t5
+        c[2] += t7 - t6
+        if arrive(sync, parts):
+            t8 = _cycles()
             move_finish(grid, pos, present, flags, scr)
             collide_begin(grid, scr)
-        t9 = _cycles()
-        barrier(sync, parts)
-        t10 = _cycles()
-        c[1] += t5 - t4
-        c[2] += t7 - t6
-        c[4] += t9 - t8
-        c[5] += (t6 - t5) + (t8 - t7) + (t10 - t9)
+            release(sync)
+            t9 = _cycles()
+            c[5] += t8 - t7
+            c[4] += t9 - t8
+        else:
+            c[5] += _cycles() - t7
         while atomic_load(cs, CS_CONT) != 0:
             t = _cycles()
-            collide_strips(p, parts, 0, cfg, grid, pos, motor, flags, scr)
+            collide_strips_grab(p, 0, cfg, grid, pos, motor, flags, scr)
             t1 = _cycles()
-            barrier(sync, parts)
+            if arrive(sync, parts):
+                release(sync)
             t2 = _cycles()
-            collide_strips(p, parts, 1, cfg, grid, pos, motor, flags, scr)
+            collide_strips_grab(p, 1, cfg, grid, pos, motor, flags, scr)
             t3 = _cycles()
-            barrier(sync, parts)
-            t4 = _cycles()
-            if p == 0:
-                collide_after_pass(cfg, grid, pos, present, flags, scr)
-            t5 = _cycles()
-            barrier(sync, parts)
-            t6 = _cycles()
             c[3] += (t1 - t) + (t3 - t2)
-            c[4] += t5 - t4
-            c[5] += (t2 - t1) + (t4 - t3) + (t6 - t5)
-        t = _cycles()
-        if p == 0:
-            collide_end(grid, pos, present, flags, counters, scr)
-        t1 = _cycles()
-        barrier(sync, parts)
-        t2 = _cycles()
-        c[4] += t1 - t
-        c[5] += t2 - t1
+            c[5] += t2 - t1
+            if arrive(sync, parts):
+                t4 = _cycles()
+                collide_after_pass(cfg, grid, pos, present, flags, scr)
+                if cs[CS_CONT] == 0:
+                    collide_end(grid, pos, present, flags, counters, scr)
+                    cs[CS_STOP] = 1 if mem[0][0] != 0 else 0
+                    cs[CS_DONE] = k + 1
+                release(sync)
+                t5 = _cycles()
+                c[5] += t4 - t3
+                c[4] += t5 - t4
+            else:
+                c[5] += _cycles() - t3
 
 
 @njit(parallel=True)
@@ -177,6 +216,7 @@ def _timed_threaded(n, tick0, cfg, grid, pos, heading, motor, led, alive, presen
                     turn_rate, tx_phase, out_on, out_type, out_data, in_count, in_type,
                     in_data, in_dist, counters, flags, trig, rng_ctl, mem, scr, cycles):
     grid_sync_flags(grid, pos, present, flags, scr.robot_flag)
+    scr.cstate[CS_DONE] = 0
     for p in prange(scr.parts[0]):
         _timed_thread(p, n, tick0, cfg, grid, pos, heading, motor, led, alive, present,
                       speed, turn_rate, tx_phase, out_on, out_type, out_data, in_count,

@@ -38,9 +38,10 @@ from etswarm.sim.neighbours import (
     G_OY,
     S_DRIFTED,
     S_EPOCH,
-    build_contact_list,
     cell_range,
+    contact_list_from,
     drifted,
+    list_reach,
     new_epoch,
     rebuild_keeping_list,
 )
@@ -90,6 +91,8 @@ def collide_phase(cfg, grid, pos, present, motor, dirty, dirty_flag, n_dirty, sp
     near_r = contact + margin
     drift2 = grid.geom[G_DRIFT] * grid.geom[G_DRIFT]
     near_slots, near_n, near_epoch = grid.near_slots, grid.near_n, grid.near_epoch
+    ref_x, ref_y = grid.ref_x, grid.ref_y
+    list_r2, list_reach_mm = list_reach(grid, near_r)
     while n_cur > 0 and passes < cfg.max_passes:
         if stale:
             n_cur = rebuild_keeping_list(grid, pos, present, cur, n_cur, dirty_flag)
@@ -128,13 +131,14 @@ def collide_phase(cfg, grid, pos, present, motor, dirty, dirty_flag, n_dirty, sp
             n_list = -1
             if lists_ok:
                 if near_epoch[a] != epoch:
-                    near_n[a] = build_contact_list(grid, a, xi, yi, near_r, 0, ny - 1,
-                                                    near)
+                    near_n[a] = contact_list_from(start, sx, sy, near_slots, a, xi, yi,
+                                                  list_r2, list_reach_mm, ox, oy, inv, nx,
+                                                  ny, 0, ny - 1, near)
                     near_epoch[a] = epoch
                 n_list = near_n[a]
             if n_list >= 0:
                 # the listed slots: the same overlaps and budgets as the cell query
-                n_over, own = list_overlaps(near_slots[a], n_list, xi, yi, own, near2,
+                n_over, own = list_overlaps(near_slots, a, n_list, xi, yi, own, near2,
                                             contact2, share_k, resolve2, half_margin, sx, sy,
                                             budget, near)
             else:
@@ -179,16 +183,18 @@ def collide_phase(cfg, grid, pos, present, motor, dirty, dirty_flag, n_dirty, sp
                 pos[j, 0] = xj
                 pos[j, 1] = yj
                 budget[s] = 0.0
-                if drifted(grid, s, xj, yj, drift2):
+                if drifted(ref_x, ref_y, s, xj, yj, drift2):
                     lists_ok = False
                 bx = sbx[s]
                 by = sby[s]
                 if xj < bx or xj >= bx + span or yj < by or yj >= by + span:
                     stale = True
-                if dirty_flag[s] == 0:
-                    dirty_flag[s] = 1
+                # listed once: written always, kept if new (no branch to mispredict;
+                # the bound check fails only when every slot is listed)
+                if n_next < n_slots:
                     nxt_list[n_next] = s
-                    n_next += 1
+                n_next += dirty_flag[s] == 0
+                dirty_flag[s] = 1
                 moved_i = True
                 pushes += 1
             i = sidx[a]
@@ -200,16 +206,16 @@ def collide_phase(cfg, grid, pos, present, motor, dirty, dirty_flag, n_dirty, sp
                 sy[a] = yi
                 pos[i, 0] = xi
                 pos[i, 1] = yi
-                if drifted(grid, a, xi, yi, drift2):
+                if drifted(ref_x, ref_y, a, xi, yi, drift2):
                     lists_ok = False
                 bx = sbx[a]
                 by = sby[a]
                 if xi < bx or xi >= bx + span or yi < by or yi >= by + span:
                     stale = True
-                if dirty_flag[a] == 0:
-                    dirty_flag[a] = 1
+                if n_next < n_slots:
                     nxt_list[n_next] = a
-                    n_next += 1
+                n_next += dirty_flag[a] == 0
+                dirty_flag[a] = 1
         if not lists_ok:
             grid.state[S_DRIFTED] = 1
         tmp = cur
@@ -233,7 +239,7 @@ def collide_phase(cfg, grid, pos, present, motor, dirty, dirty_flag, n_dirty, sp
     return n_cur
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True)
 def gather_overlaps(a, xi, yi, own, reach, near2, contact2, share_k, resolve2, ox, oy, inv,
                  nx, ny, start, sx, sy, budget, near, near_d2):
     """The cell query of an examination: lower the budgets of the slots within
@@ -282,20 +288,25 @@ def gather_overlaps(a, xi, yi, own, reach, near2, contact2, share_k, resolve2, o
     return n_over, own
 
 
-@njit(cache=True, inline="always")
-def list_overlaps(listed, n_list, xi, yi, own, near2, contact2, share_k, resolve2,
+@njit(cache=True)
+def list_overlaps(near_slots, a, n_list, xi, yi, own, near2, contact2, share_k, resolve2,
                   half_margin, sx, sy, budget, near):
-    """:func:`gather_overlaps` from a contact list ``listed[:n_list]`` (slots in slot order,
+    """:func:`gather_overlaps` from the contact list ``near_slots[a, :n_list]`` (slots in
+    slot order,
     a superset of those within contact + margin): the same budgets, the same overlaps in
     the same order. One loop; beyond contact + margin the share is half the margin, which
     changes no budget (none exceeds it)."""
     n_over = 0
     for q in range(n_list):
-        s = np.uint32(listed[q])
+        s = np.uint32(near_slots[a, q])
         dx = sx[s] - xi
         dy = sy[s] - yi
         d2 = dx * dx + dy * dy
-        share = max((d2 - contact2) * share_k, 0.0) if d2 < near2 else half_margin
+        # beyond contact + margin: half the margin, selected by arithmetic that gives
+        # exactly one of the two values (a branch here is mispredicted often)
+        within = np.float64(d2 < near2)
+        share = (within * max((d2 - contact2) * share_k, 0.0)
+                 + (1.0 - within) * half_margin)
         own = min(own, share)
         budget[s] = min(budget[s], share)
         near[n_over] = s

@@ -86,11 +86,13 @@ from numba import njit, prange
 from etswarm.sim.parallel import (
     CS_CONT, CS_DONE, CS_STOP, collide_after_pass, collide_begin, collide_end,
     collide_strips_grab, control_begin, control_done, grid_sync_flags, move_finish,
-    move_part, prebuild_lists, radio_count, radio_file_part, radio_list_part,
+    move_part, part_bounds, prebuild_lists, radio_bad, radio_count, radio_file_part,
+    radio_list_part,
 )
 from etswarm.sim.sync import arrive, atomic_load, release
 
-# controller_step is bound by etswarm.sim.kernel before this body runs.
+# controller_part and controller_rest are bound by etswarm.sim.kernel before this body
+# runs (the controller's part_step and rest_step, or no_part_step and its step).
 
 
 @njit(cache={cache})
@@ -101,19 +103,29 @@ def thread_ticks(p, n, tick0, cfg, grid, pos, heading, motor, led, alive, presen
     parts = scratch.parts[0]
     sync = scratch.sync
     cs = scratch.cstate
+    lo, hi = part_bounds(p, pos.shape[0], scratch)
     for k in range(n):
         tick = tick0 + k
-        radio_list_part(p, tick, cfg, grid, pos, alive, present, tx_phase, out_on, scratch)
+        radio_list_part(p, tick, cfg, grid, pos, alive, present, tx_phase, out_on, out_type,
+                        out_data, scratch)
         if arrive(sync, parts):
             release(sync)
         radio_file_part(p, tick, cfg, grid, pos, alive, present, tx_phase, out_on, out_type,
                         out_data, in_count, in_type, in_data, in_dist, counters, scratch)
+        # the controller's per-robot work on the robots whose inboxes this thread filed
+        bad = radio_bad(scratch)  # then part 0 filed every inbox: parts wait (below)
+        if not bad:
+            controller_part(lo, hi, tick, alive, in_count, in_type, in_data, in_dist, motor,
+                            led, out_on, out_type, out_data, mem)
         if arrive(sync, parts):
-            # this thread runs the controller; the others build contact lists meanwhile
+            # this thread runs the rest of the controller; the others build contact lists
             radio_count(counters, scratch)
             control_begin(scratch)
             release(sync)
-            controller_step(tick, alive, in_count, in_type, in_data, in_dist, motor, led,
+            if bad:
+                controller_part(0, pos.shape[0], tick, alive, in_count, in_type, in_data,
+                                in_dist, motor, led, out_on, out_type, out_data, mem)
+            controller_rest(tick, alive, in_count, in_type, in_data, in_dist, motor, led,
                             out_on, out_type, out_data, mem, rng_ctl)
             control_done(scratch)
         else:
@@ -199,13 +211,21 @@ def _source_hash(step_py: Any, template: str = _TEMPLATE) -> str | None:
     return digest.hexdigest()[:16]
 
 
-def load_kernel(step: Any, threaded: bool = False) -> Any:
+def load_kernel(step: Any, threaded: bool = False, part_step: Any = None,
+                rest_step: Any = None) -> Any:
     """The compiled ``run_ticks`` for controller dispatcher ``step`` (see module doc).
 
     ``threaded``: the loop of the threaded phases (:mod:`etswarm.sim.parallel`), a kernel
-    of its own (file name ending ``_mt_<hash>``) with the arguments of that template.
+    of its own (file name ending ``_mt_<hash>``) with the arguments of that template. It
+    runs the controller as ``part_step`` on every thread (its robots) and then
+    ``rest_step`` on one (both dispatchers; see :mod:`etswarm.sim.simulator`); without
+    them, ``step`` on one thread.
     """
-    key = (id(step), bool(threaded))
+    if threaded and (part_step is None or rest_step is None):
+        part_step = rest_step = None
+    if not threaded:
+        part_step = rest_step = None
+    key = (id(step), bool(threaded), id(part_step), id(rest_step))
     template = _TEMPLATE_THREADED if threaded else _TEMPLATE
     if key in _loaded:
         return _loaded[key].run_ticks
@@ -216,6 +236,17 @@ def load_kernel(step: Any, threaded: bool = False) -> Any:
     label = re.sub(r"[^0-9A-Za-z_]", "_", f"{py_func.__module__}_{py_func.__qualname__}")
     if threaded:
         label += "_mt"
+        if part_step is not None:
+            label += "_parts"
+            if digest is not None:
+                extra = hashlib.sha256(digest.encode())
+                for fn in (part_step, rest_step):
+                    py = getattr(fn, "py_func", None)
+                    if py is None:
+                        raise TypeError("controller part_step and rest_step must be @njit "
+                                        "functions (numba dispatchers)")
+                    extra.update(f"{py.__module__}.{py.__qualname__}".encode())
+                digest = extra.hexdigest()[:16]
     source = template.format(qualname=f"{py_func.__module__}.{py_func.__qualname__}",
                               cache=digest is not None)
     if digest is None:
@@ -233,6 +264,13 @@ def load_kernel(step: Any, threaded: bool = False) -> Any:
     assert spec is not None and spec.loader is not None
     module = importlib.util.module_from_spec(spec)
     module.controller_step = step  # type: ignore[attr-defined]
+    if threaded:
+        from etswarm.sim.parallel import no_part_step
+
+        module.controller_part = (  # type: ignore[attr-defined]
+            part_step if part_step is not None else no_part_step)
+        module.controller_rest = (  # type: ignore[attr-defined]
+            rest_step if rest_step is not None else step)
     sys.modules[name] = module
     spec.loader.exec_module(module)
     _loaded[key] = module

@@ -64,6 +64,7 @@ def move_phase(cfg, grid, pos, heading, motor, alive, present, speed, turn_rate,
     two_pi = 2.0 * np.pi
     sx, sy, slot, sbx, sby = grid.sx, grid.sy, grid.slot, grid.sbx, grid.sby
     budget = grid.budget
+    ref_x, ref_y = grid.ref_x, grid.ref_y
     span = grid.geom[G_CELL] + 2.0 * grid.geom[G_MARGIN]
     drift2 = grid.geom[G_DRIFT] * grid.geom[G_DRIFT]
     stale = False
@@ -78,8 +79,8 @@ def move_phase(cfg, grid, pos, heading, motor, alive, present, speed, turn_rate,
             prefetch(sby, ahead)
             prefetch(budget, ahead)
             prefetch(dirty_flag, ahead)
-            prefetch(grid.ref_x, ahead)
-            prefetch(grid.ref_y, ahead)
+            prefetch(ref_x, ahead)
+            prefetch(ref_y, ahead)
         m = motor[i]
         if m == 0 or not alive[i] or not present[i]:
             continue
@@ -148,7 +149,7 @@ def move_phase(cfg, grid, pos, heading, motor, alive, present, speed, turn_rate,
         by = sby[s]
         if x < bx or x >= bx + span or y < by or y >= by + span:
             stale = True
-        drift |= drifted(grid, s, x, y, drift2)
+        drift |= drifted(ref_x, ref_y, s, x, y, drift2)
         b = budget[s] - travel
         budget[s] = b
         if b <= 0.0 and dirty_flag[s] == 0:

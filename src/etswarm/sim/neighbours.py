@@ -219,30 +219,48 @@ def new_epoch(grid):
     grid.state[S_DRIFTED] = 0
 
 
-@njit(cache=True, inline="always")
-def drifted(grid, s, x, y, drift2):
+@njit(cache=True)
+def drifted(ref_x, ref_y, s, x, y, drift2):
     """True when slot ``s`` at (x, y) is more than the drift (``drift2`` its square) away
-    from where it stood when the epoch began."""
-    ex = x - grid.ref_x[s]
-    ey = y - grid.ref_y[s]
+    from where it stood when the epoch began (``ref_x``, ``ref_y``: the grid's arrays;
+    hot loops pass arrays, not the grid, since every field read from the grid tuple
+    costs the numba runtime an atomic reference count up and down)."""
+    ex = x - ref_x[s]
+    ey = y - ref_y[s]
     return ex * ex + ey * ey > drift2
 
 
 @njit(cache=True, inline="always")
+def list_reach(grid, near_r):
+    """(squared radius, cell-query reach) in mm of the contact lists for examinations
+    that need the robots within ``near_r`` mm: radius near_r + 4 drift + LIST_EPS, reach
+    that plus the margin (see :func:`build_contact_list`)."""
+    list_r = near_r + 4.0 * grid.geom[G_DRIFT] + LIST_EPS
+    return list_r * list_r, list_r + grid.geom[G_MARGIN]
+
+
+@njit(cache=True)
 def build_contact_list(grid, a, xi, yi, near_r, row_lo, row_hi, buf):
     """Write the contact list of slot ``a`` at (xi, yi): every other filed slot within
     ``near_r`` + 4 drift (+ LIST_EPS) mm, in slot order, scanning cell rows clipped to
     ``row_lo`` .. ``row_hi``. Returns its length, or -1 if it holds more than LIST_CAP.
-    ``buf`` (N,) uint32 scratch (the scan keeps slots without branching on distances)."""
-    start, sx, sy = grid.start, grid.sx, grid.sy
-    margin = grid.geom[G_MARGIN]
-    list_r = near_r + 4.0 * grid.geom[G_DRIFT] + LIST_EPS
-    list_r2 = list_r * list_r
-    reach = list_r + margin
-    inv = grid.geom[G_INV]
-    nx = grid.dims[0]
-    cx0, cx1 = cell_range(xi, reach, grid.geom[G_OX], inv, nx)
-    cy0, cy1 = cell_range(yi, reach, grid.geom[G_OY], inv, grid.dims[1])
+    ``buf`` (N,) uint32 scratch (the scan keeps slots without branching on distances).
+    Hot loops call :func:`contact_list_from` with the grid's arrays instead."""
+    list_r2, reach = list_reach(grid, near_r)
+    return contact_list_from(grid.start, grid.sx, grid.sy, grid.near_slots, a, xi, yi,
+                             list_r2, reach, grid.geom[G_OX], grid.geom[G_OY],
+                             grid.geom[G_INV], grid.dims[0], grid.dims[1], row_lo, row_hi,
+                             buf)
+
+
+@njit(cache=True)
+def contact_list_from(start, sx, sy, near_slots, a, xi, yi, list_r2, reach, ox, oy, inv,
+                      nx, ny, row_lo, row_hi, buf):
+    """:func:`build_contact_list` from the grid's arrays (``start``, ``sx``, ``sy``,
+    ``near_slots``) and geometry (origin ``ox``, ``oy``, 1/cell ``inv``, ``nx`` x ``ny``
+    cells; ``list_r2`` and ``reach`` from :func:`list_reach`)."""
+    cx0, cx1 = cell_range(xi, reach, ox, inv, nx)
+    cy0, cy1 = cell_range(yi, reach, oy, inv, ny)
     cy0 = max(cy0, row_lo)
     cy1 = min(cy1, row_hi)
     ua = np.uint64(a)
@@ -256,9 +274,8 @@ def build_contact_list(grid, a, xi, yi, near_r, row_lo, row_hi, buf):
             count += (dx * dx + dy * dy < list_r2) & (s != ua)
     if count > LIST_CAP:
         return -1
-    out = grid.near_slots[a]
     for q in range(count):
-        out[q] = buf[q]
+        near_slots[a, q] = buf[q]
     return count
 
 

@@ -16,8 +16,10 @@ The controller still gets the sequential controller stream (it runs on one threa
 Radio. Pass 1 (one part per thread, by sender index): each sender of this tick lists its
 receivers (slot order, as the serial radio visits them) with their measured distance,
 after the loss draw, in a (N, RX_MAX) buffer row of its own (rows of one part's senders
-are consecutive). Pass 2 (one part per thread, by receiver index): each thread walks all
-senders in index order and files the copies for its own receivers. So every inbox holds
+are consecutive), grouped by the part the receiver belongs to (slot order kept within
+a group), with the sender's message copied. Pass 2 (one part per thread, by receiver
+index): each thread walks all senders in index order and files the copies of its own
+group of each row. So every inbox holds
 its copies in sender order, capped at K exactly as the serial radio does; with no loss
 and no noise the inboxes are identical to the serial radio's. A sender with more than
 RX_MAX receivers in range (only possible when many robots overlap) sends the whole tick
@@ -69,14 +71,16 @@ from etswarm.sim.neighbours import (
     G_OY,
     S_DRIFTED,
     S_EPOCH,
-    build_contact_list,
     cell_range,
+    contact_list_from,
     drifted,
     grid_rebuild,
+    list_reach,
     new_epoch,
 )
 from etswarm.sim.prefetch import prefetch
 from etswarm.sim.sync import atomic_add, atomic_load
+from etswarm.sim.world import PAYLOAD_BYTES
 
 #: Strips per colour in the collision phase (strips = 2 * STRIP_PAIRS at most).
 STRIP_PAIRS = 8
@@ -123,7 +127,12 @@ class ThreadScratch(NamedTuple):
     bounds of the strips; ``strip_out`` (2 P, 5) int64 per-strip
     results; ``near`` (T, N) uint32, ``near_d2`` (T, N) float64 and ``work`` (T, N) int32
     per-thread scratch of the collision phase (work, near_d2: also of the radio);
-    ``robot_flag`` (N,) uint8 flags by robot while the grid is rebuilt.
+    ``robot_flag`` (N,) uint8 flags by robot while the grid is rebuilt; ``tx_type`` (N,)
+    uint8 and ``tx_data`` (N, 9) uint8: the message of the sender in the same row of
+    ``senders``, copied in pass 1 (so a controller part may rewrite ``out_*`` of its
+    robots while other threads still file copies); ``rx_cut`` (N, T + 1) int32: where
+    each part's receivers begin in the row (pass 1 groups them by part, so a thread
+    reads only its own).
     """
 
     key: np.ndarray
@@ -141,6 +150,9 @@ class ThreadScratch(NamedTuple):
     near_d2: np.ndarray
     work: np.ndarray
     robot_flag: np.ndarray
+    tx_type: np.ndarray
+    tx_data: np.ndarray
+    rx_cut: np.ndarray
 
 
 def make_scratch(n: int, threads: int, key: int) -> ThreadScratch:
@@ -162,6 +174,9 @@ def make_scratch(n: int, threads: int, key: int) -> ThreadScratch:
         near_d2=np.zeros((t, n)),
         work=np.zeros((t, n), dtype=np.int32),
         robot_flag=np.zeros(n, dtype=np.uint8),
+        tx_type=np.zeros(n, dtype=np.uint8),
+        tx_data=np.zeros((n, 9), dtype=np.uint8),
+        rx_cut=np.zeros((n, t + 1), dtype=np.int32),
     )
 
 
@@ -248,7 +263,7 @@ def grid_sync_flags(grid, pos, present, flags, robot_flag):
 # ---------------------------------------------------------------- radio
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True)
 def _list_receivers(i, row_out, x, y, tick, key, cfg, grid, alive, rx_j, rx_d, row_cap,
                     cand_s, cand_d2):
     """Receivers of sender i at (x, y) (slot order) into rx_j[row_out], rx_d[row_out];
@@ -298,7 +313,7 @@ def _list_receivers(i, row_out, x, y, tick, key, cfg, grid, alive, rx_j, rx_d, r
     return listed, lost
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True)
 def _is_sender(i, phase, tx_phase, out_on, alive, present):
     return tx_phase[i] == phase and out_on[i] and alive[i] and present[i]
 
@@ -346,10 +361,38 @@ def _radio_one_thread(tick, cfg, grid, pos, alive, present, tx_phase, out_on, ou
 
 
 @njit(cache=True)
-def _radio_list_part(lo, hi, tick, cfg, grid, pos, alive, present, tx_phase, out_on, scr, p):
-    """Pass 1 for senders lo..hi-1: list receivers; part counts into scr.part_n[p]."""
+def _split_by_part(m, listed, n, parts, rx_j, rx_d, rx_cut, tmp_j, tmp_d):
+    """Reorder row ``m``'s ``listed`` receivers by part (robots n q / T .. n (q + 1) / T
+    - 1), keeping their order within a part, and write the part boundaries to
+    ``rx_cut[m, :parts + 1]``; ``tmp_j``, ``tmp_d``: scratch of at least ``listed``."""
+    rx_cut[m, 0] = 0
+    if parts == 1:
+        rx_cut[m, 1] = listed
+        return
+    for k in range(listed):
+        tmp_j[k] = rx_j[m, k]
+        tmp_d[k] = rx_d[m, k]
+    at = 0
+    for q in range(parts):
+        lo = n * q // parts
+        hi = n * (q + 1) // parts
+        for k in range(listed):
+            j = tmp_j[k]
+            rx_j[m, at] = j
+            rx_d[m, at] = tmp_d[k]
+            at += (j >= lo) & (j < hi)
+        rx_cut[m, q + 1] = at
+
+
+@njit(cache=True)
+def _radio_list_part(lo, hi, tick, cfg, grid, pos, alive, present, tx_phase, out_on,
+                     out_type, out_data, scr, p):
+    """Pass 1 for senders lo..hi-1: list receivers and copy the message; part counts into
+    scr.part_n[p]."""
     phase = tick % cfg.tx_period
     key = scr.key[0]
+    n = pos.shape[0]
+    parts = scr.parts[0]
     m = lo
     lost = 0
     bad = 0
@@ -357,6 +400,9 @@ def _radio_list_part(lo, hi, tick, cfg, grid, pos, alive, present, tx_phase, out
         if not _is_sender(i, phase, tx_phase, out_on, alive, present):
             continue
         scr.senders[m] = i
+        scr.tx_type[m] = out_type[i]
+        for b in range(out_data.shape[1]):
+            scr.tx_data[m, b] = out_data[i, b]
         listed, n_lost = _list_receivers(i, m, pos[i, 0], pos[i, 1], tick, key, cfg, grid,
                                          alive, scr.rx_j, scr.rx_d, RX_MAX, scr.work[p],
                                          scr.near_d2[p])
@@ -365,6 +411,8 @@ def _radio_list_part(lo, hi, tick, cfg, grid, pos, alive, present, tx_phase, out
             bad = 1
             listed = 0
         scr.rx_n[m] = listed
+        _split_by_part(m, listed, n, parts, scr.rx_j, scr.rx_d, scr.rx_cut, scr.work[p],
+                       scr.near_d2[p])
         m += 1
     scr.part_n[p, PN_SENT] = m - lo
     scr.part_n[p, PN_LOST] = lost
@@ -372,40 +420,42 @@ def _radio_list_part(lo, hi, tick, cfg, grid, pos, alive, present, tx_phase, out
 
 
 @njit(cache=True)
-def _radio_file_part(lo, hi, n, parts, out_type, out_data, in_count, in_type, in_data,
-                     in_dist, scr, p):
-    """Pass 2 for receivers lo..hi-1: file every listed copy in sender order."""
+def _radio_file_part(lo, hi, n, parts, in_count, in_type, in_data, in_dist, scr, p):
+    """Pass 2 for receivers lo..hi-1: file every listed copy in sender order (the
+    messages as pass 1 copied them)."""
     cap = in_type.shape[1]
-    n_bytes = out_data.shape[1]
+    n_bytes = scr.tx_data.shape[1]
     in_count[lo:hi] = 0
     delivered = 0
     overflow = 0
+    rx_cut = scr.rx_cut
     for q in range(parts):
         first = n * q // parts
         last = first + scr.part_n[q, PN_SENT]
         for m in range(first, last):
-            i = scr.senders[m]
-            mtype = out_type[i]
+            mtype = scr.tx_type[m]
             if m + 1 < last:
                 # the next sender's receivers here: ask for their inbox rows (scattered)
-                for k in range(scr.rx_n[m + 1]):
+                for k in range(rx_cut[m + 1, p], rx_cut[m + 1, p + 1]):
                     j = scr.rx_j[m + 1, k]
-                    j = j if (j >= lo) & (j < hi) else lo
                     prefetch(in_count, j)
                     prefetch(in_type, j)
                     prefetch(in_data, j)
                     prefetch(in_dist, j)
-            for k in range(scr.rx_n[m]):
+            # this part's receivers of sender row m (pass 1 put them together)
+            for k in range(rx_cut[m, p], rx_cut[m, p + 1]):
                 j = scr.rx_j[m, k]
-                if j < lo or j >= hi:
-                    continue
                 c = in_count[j]
                 if c >= cap:
                     overflow += 1
                     continue
                 in_type[j, c] = mtype
-                for b in range(n_bytes):
-                    in_data[j, c, b] = out_data[i, b]
+                if n_bytes == PAYLOAD_BYTES:  # a constant count: one unrolled copy
+                    for b in range(PAYLOAD_BYTES):
+                        in_data[j, c, b] = scr.tx_data[m, b]
+                else:
+                    for b in range(n_bytes):
+                        in_data[j, c, b] = scr.tx_data[m, b]
                 in_dist[j, c] = scr.rx_d[m, k]
                 in_count[j] = c + 1
                 delivered += 1
@@ -435,8 +485,8 @@ def radio_file_part(p, tick, cfg, grid, pos, alive, present, tx_phase, out_on, o
                               out_type, out_data, in_count, in_type, in_data, in_dist,
                               counters, scr)
         return
-    _radio_file_part(n * p // parts, n * (p + 1) // parts, n, parts, out_type, out_data,
-                     in_count, in_type, in_data, in_dist, scr, p)
+    _radio_file_part(n * p // parts, n * (p + 1) // parts, n, parts, in_count, in_type,
+                     in_data, in_dist, scr, p)
 
 
 @njit(cache=True)
@@ -453,12 +503,13 @@ def radio_count(counters, scr):
 
 
 @njit(cache=True)
-def radio_list_part(p, tick, cfg, grid, pos, alive, present, tx_phase, out_on, scr):
+def radio_list_part(p, tick, cfg, grid, pos, alive, present, tx_phase, out_on, out_type,
+                    out_data, scr):
     """Pass 1 of part ``p`` (senders n p / T .. n (p + 1) / T - 1)."""
     n = pos.shape[0]
     parts = scr.parts[0]
     _radio_list_part(n * p // parts, n * (p + 1) // parts, tick, cfg, grid, pos, alive,
-                     present, tx_phase, out_on, scr, p)
+                     present, tx_phase, out_on, out_type, out_data, scr, p)
 
 
 @njit(cache=True)
@@ -468,7 +519,8 @@ def radio_phase_mt(tick, cfg, grid, pos, alive, present, tx_phase, out_on, out_t
     World; see module doc): what the threaded loop's threads do, in one call."""
     parts = scr.parts[0]
     for p in range(parts):
-        radio_list_part(p, tick, cfg, grid, pos, alive, present, tx_phase, out_on, scr)
+        radio_list_part(p, tick, cfg, grid, pos, alive, present, tx_phase, out_on, out_type,
+                        out_data, scr)
     for q in range(parts):
         radio_file_part(q, tick, cfg, grid, pos, alive, present, tx_phase, out_on, out_type,
                         out_data, in_count, in_type, in_data, in_dist, counters, scr)
@@ -492,6 +544,7 @@ def _move_part(lo, hi, tick, cfg, grid, pos, heading, motor, alive, present, spe
     two_pi = 2.0 * np.pi
     sx, sy, slot, sbx, sby = grid.sx, grid.sy, grid.slot, grid.sbx, grid.sby
     budget = grid.budget
+    ref_x, ref_y = grid.ref_x, grid.ref_y
     span = grid.geom[G_CELL] + 2.0 * grid.geom[G_MARGIN]
     drift2 = grid.geom[G_DRIFT] * grid.geom[G_DRIFT]
     stale = False
@@ -505,8 +558,8 @@ def _move_part(lo, hi, tick, cfg, grid, pos, heading, motor, alive, present, spe
             prefetch(sby, ahead)
             prefetch(budget, ahead)
             prefetch(flags, ahead)
-            prefetch(grid.ref_x, ahead)
-            prefetch(grid.ref_y, ahead)
+            prefetch(ref_x, ahead)
+            prefetch(ref_y, ahead)
         m = motor[i]
         if m == 0 or not alive[i] or not present[i]:
             continue
@@ -574,7 +627,7 @@ def _move_part(lo, hi, tick, cfg, grid, pos, heading, motor, alive, present, spe
         by = sby[s]
         if x < bx or x >= bx + span or y < by or y >= by + span:
             stale = True
-        drift |= drifted(grid, s, x, y, drift2)
+        drift |= drifted(ref_x, ref_y, s, x, y, drift2)
         b = budget[s] - travel
         budget[s] = b
         if b <= 0.0:
@@ -681,6 +734,8 @@ def _collide_strip(lo, hi, cur_bit, nxt_bit, lists_ok, cfg, grid, pos, motor, fl
     drift2 = grid.geom[G_DRIFT] * grid.geom[G_DRIFT]
     epoch = grid.state[S_EPOCH]
     near_slots, near_n, near_epoch = grid.near_slots, grid.near_n, grid.near_epoch
+    ref_x, ref_y = grid.ref_x, grid.ref_y
+    list_r2, list_reach_mm = list_reach(grid, near_r)
     drift = False
     examined = 0
     pushes = 0
@@ -713,12 +768,13 @@ def _collide_strip(lo, hi, cur_bit, nxt_bit, lists_ok, cfg, grid, pos, motor, fl
         if lists_ok and not drift:
             if near_epoch[a] != epoch:
                 row_a = np.int64((sby[a] + margin - oy) * inv + 0.5)
-                near_n[a] = build_contact_list(grid, a, xi, yi, near_r, row_a - 1,
-                                                 row_a + 1, near)
+                near_n[a] = contact_list_from(start, sx, sy, near_slots, a, xi, yi, list_r2,
+                                              list_reach_mm, ox, oy, inv, nx, ny,
+                                              row_a - 1, row_a + 1, near)
                 near_epoch[a] = epoch
             n_list = near_n[a]
         if n_list >= 0:
-            n_over, own = list_overlaps(near_slots[a], n_list, xi, yi, own, near2, contact2,
+            n_over, own = list_overlaps(near_slots, a, n_list, xi, yi, own, near2, contact2,
                                         share_k, resolve2, half_margin, sx, sy, budget, near)
         else:
             n_over, own = gather_overlaps(a, xi, yi, own, reach, near2, contact2, share_k,
@@ -758,15 +814,14 @@ def _collide_strip(lo, hi, cur_bit, nxt_bit, lists_ok, cfg, grid, pos, motor, fl
             pos[j, 0] = xj
             pos[j, 1] = yj
             budget[s] = 0.0
-            drift |= drifted(grid, s, xj, yj, drift2)
+            drift |= drifted(ref_x, ref_y, s, xj, yj, drift2)
             bx = sbx[s]
             by = sby[s]
             if xj < bx or xj >= bx + span or yj < by or yj >= by + span:
                 stale = True
             fs = flags[s]
-            if fs & nxt_bit == 0:
-                flags[s] = fs | nxt_bit
-                n_next += 1
+            n_next += (fs & nxt_bit) == 0
+            flags[s] = fs | nxt_bit
             moved_i = True
             pushes += 1
         if not moved_i:
@@ -778,13 +833,12 @@ def _collide_strip(lo, hi, cur_bit, nxt_bit, lists_ok, cfg, grid, pos, motor, fl
             sy[a] = yi
             pos[i, 0] = xi
             pos[i, 1] = yi
-            drift |= drifted(grid, a, xi, yi, drift2)
+            drift |= drifted(ref_x, ref_y, a, xi, yi, drift2)
             if xi < sbx[a] or xi >= sbx[a] + span or yi < sby[a] or yi >= sby[a] + span:
                 stale = True
             fa = flags[a]
-            if fa & nxt_bit == 0:
-                flags[a] = fa | nxt_bit
-                n_next += 1
+            n_next += (fa & nxt_bit) == 0
+            flags[a] = fa | nxt_bit
     out[SO_EXAMINED] = examined
     out[SO_PUSHES] = pushes
     out[SO_FLAGGED] = n_next
@@ -916,6 +970,21 @@ def collide_end(grid, pos, present, flags, counters, scr):
 
 
 @njit(cache=True)
+def no_part_step(lo, hi, tick, alive, in_count, in_type, in_data, in_dist, motor, led,
+                 out_on, out_type, out_data, mem):
+    """The ``part_step`` of a controller that has none: all its work is in ``step``."""
+    return
+
+
+@njit(cache=True, inline="always")
+def part_bounds(p, n, scr):
+    """Robots ``lo .. hi - 1`` of part ``p`` (by index: the radio's receivers, the move's
+    and the controller part's robots)."""
+    parts = scr.parts[0]
+    return n * p // parts, n * (p + 1) // parts
+
+
+@njit(cache=True)
 def control_begin(scr):
     """Before the controller runs on one thread (called by that thread before it lets
     the others go on to :func:`prebuild_lists`)."""
@@ -945,8 +1014,12 @@ def prebuild_lists(p, cfg, grid, scr):
     near_r = 2.0 * cfg.radius + margin
     oy = grid.geom[G_OY]
     inv = grid.geom[G_INV]
-    sx, sy, sby = grid.sx, grid.sy, grid.sby
+    sx, sy, sby, start, near_slots = grid.sx, grid.sy, grid.sby, grid.start, grid.near_slots
     near_n, near_epoch = grid.near_n, grid.near_epoch
+    list_r2, list_reach_mm = list_reach(grid, near_r)
+    ox = grid.geom[G_OX]
+    nx = grid.dims[0]
+    ny = grid.dims[1]
     buf = scr.near[p]
     while atomic_load(cs, CS_CTL) == 0:
         first = atomic_add(cs, CS_BUILD, PREBUILD_CHUNK)
@@ -956,8 +1029,9 @@ def prebuild_lists(p, cfg, grid, scr):
             if near_epoch[a] != epoch:
                 # the rows next to its own only, as in the collision strips
                 row_a = np.int64((sby[a] + margin - oy) * inv + 0.5)
-                near_n[a] = build_contact_list(grid, a, sx[a], sy[a], near_r, row_a - 1,
-                                               row_a + 1, buf)
+                near_n[a] = contact_list_from(start, sx, sy, near_slots, a, sx[a], sy[a],
+                                              list_r2, list_reach_mm, ox, oy, inv, nx, ny,
+                                              row_a - 1, row_a + 1, buf)
                 near_epoch[a] = epoch
 
 

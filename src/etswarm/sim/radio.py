@@ -17,6 +17,7 @@ from numba import njit
 
 from etswarm.sim.neighbours import G_INV, G_MARGIN, G_OX, G_OY, cell_range
 from etswarm.sim.prefetch import prefetch
+from etswarm.sim.world import PAYLOAD_BYTES
 
 
 @njit(cache=True)
@@ -91,8 +92,12 @@ def radio_phase(tick, cfg, grid, pos, alive, present, tx_phase, out_on, out_type
                 if d < 0.0:
                     d = 0.0
             in_type[j, k] = mtype
-            for c in range(n_bytes):
-                in_data[j, k, c] = out_data[i, c]
+            if n_bytes == PAYLOAD_BYTES:  # a constant count: one unrolled copy
+                for c in range(PAYLOAD_BYTES):
+                    in_data[j, k, c] = out_data[i, c]
+            else:
+                for c in range(n_bytes):
+                    in_data[j, k, c] = out_data[i, c]
             in_dist[j, k] = d
             in_count[j] = k + 1
             delivered += 1

@@ -12,7 +12,14 @@ Two kinds of controller plug in:
   stop flag). :meth:`Simulator.run_ticks` then runs all ``n`` ticks inside one compiled
   call (see :mod:`etswarm.sim.kernel`). If the controller sets ``mem[0][0] != 0`` during
   its control phase, the kernel finishes that tick and returns early; the flag is left
-  set for the host to read and clear.
+  set for the host to read and clear. Optionally also ``part_step`` and ``rest_step``
+  (both ``@njit``): ``part_step(lo, hi, tick, alive, in_count, in_type, in_data,
+  in_dist, motor, led, out_on, out_type, out_data, mem)`` does the per-robot work of
+  robots ``lo .. hi - 1`` touching only their rows and drawing nothing, and
+  ``rest_step`` (``step``'s signature) the rest; ``part_step`` over all robots followed
+  by ``rest_step`` must give exactly what ``step`` gives. With ``threads > 1`` the
+  threaded loop then runs the parts on all threads at once (each thread right after
+  filing its robots' inboxes) and ``rest_step`` on one; ``step`` is used otherwise.
 * **slow path**: any object with a Python method ``step(view)``, where ``view`` is a
   :class:`ControlView` of arrays for all robots; one Python call per tick.
 """
@@ -125,7 +132,9 @@ class Simulator:
                     or mem[0].dtype != np.int64 or mem[0].shape != (1,)):
                 raise TypeError("controller.mem must be a tuple whose element 0 is a (1,) "
                                 "int64 stop-flag array")
-            self._kernel = load_kernel(controller.step, threaded=self._scratch is not None)
+            self._kernel = load_kernel(controller.step, threaded=self._scratch is not None,
+                                       part_step=getattr(controller, "part_step", None),
+                                       rest_step=getattr(controller, "rest_step", None))
             self._call_kernel(0)  # compile, or load from the disk cache, now
         elif not callable(getattr(controller, "step", None)):
             raise TypeError("controller needs a step(view) method or an njit step + mem")

@@ -33,17 +33,18 @@ PREFETCH_AHEAD = 4
 
 
 @njit(cache=True)
-def randomwalk_step(tick, alive, in_count, in_type, in_data, in_dist, motor, led, out_on,
-                    out_type, out_data, mem, rng):
-    """One control tick for all robots (signature: the fast-path controller contract)."""
-    next_move = mem[1]
+def randomwalk_part(lo, hi, tick, alive, in_count, in_type, in_data, in_dist, motor, led,
+                    out_on, out_type, out_data, mem):
+    """The per-robot work of a control tick for robots ``lo .. hi - 1`` (no random draws):
+    hear (refresh or add neighbour-table entries) and, every 8 ticks, refresh the
+    neighbour count and the outgoing message. Touches only those robots' rows, so parts
+    may run on different threads at once (the ``part_step`` of the controller protocol)."""
     nb_id = mem[2]
     nb_seen = mem[3]
     nb_count = mem[4]
     slots = nb_id.shape[1]
-    n = alive.shape[0]
-    for i in range(n):
-        if i + PREFETCH_AHEAD < n:
+    for i in range(lo, hi):
+        if i + PREFETCH_AHEAD < hi:
             # rows of a robot a few places ahead (read only if it heard or refreshes)
             ahead = i + PREFETCH_AHEAD
             prefetch(nb_id, ahead)
@@ -56,24 +57,27 @@ def randomwalk_step(tick, alive, in_count, in_type, in_data, in_dist, motor, led
         for k in range(in_count[i]):
             if in_type[i, k] != MSG_HELLO:
                 continue
-            sender = np.int64(in_data[i, k, 0]) | (np.int64(in_data[i, k, 1]) << 8)
+            sender = np.int32(in_data[i, k, 0]) | (np.int32(in_data[i, k, 1]) << 8)
+            # the entry holding the sender: a scan without early exit (no branch to
+            # mispredict; IDs are unique in a table, so the match is the first one)
+            hit = np.int32(slots)
+            for s in range(slots):
+                hit = min(hit, np.int32(s) if nb_id[i, s] == sender else np.int32(slots))
+            if hit < slots:
+                nb_seen[i, hit] = tick
+                continue
+            # not in the table: the first free or expired entry, else the oldest
             free = -1
             oldest = 0
-            found = False
             for s in range(slots):
-                if nb_id[i, s] == sender:
-                    nb_seen[i, s] = tick
-                    found = True
-                    break
                 if nb_id[i, s] < 0 or tick - nb_seen[i, s] > EXPIRE_TICKS:
                     if free < 0:
                         free = s
                 elif nb_seen[i, s] < nb_seen[i, oldest]:
                     oldest = s
-            if not found:
-                s = free if free >= 0 else oldest
-                nb_id[i, s] = sender
-                nb_seen[i, s] = tick
+            s = free if free >= 0 else oldest
+            nb_id[i, s] = sender
+            nb_seen[i, s] = tick
         # refresh the neighbour count and the outgoing message every 8 ticks
         if (tick + i) & 7 == 0 or not out_on[i]:
             count = 0
@@ -87,8 +91,16 @@ def randomwalk_step(tick, alive, in_count, in_type, in_data, in_dist, motor, led
             out_data[i, 2] = min(count, 255)
             out_on[i] = True
             led[i] = min(count, 255)
-        # move: a new random move every 16..79 ticks
-        if tick >= next_move[i]:
+
+
+@njit(cache=True)
+def randomwalk_rest(tick, alive, in_count, in_type, in_data, in_dist, motor, led, out_on,
+                    out_type, out_data, mem, rng):
+    """The rest of a control tick after :func:`randomwalk_part` ran for every robot: a new
+    random move every 16..79 ticks, drawn in robot order (one thread)."""
+    next_move = mem[1]
+    for i in range(alive.shape[0]):
+        if tick >= next_move[i] and alive[i]:
             u = rng.random()
             if u < 0.5:
                 motor[i] = 1
@@ -99,6 +111,18 @@ def randomwalk_step(tick, alive, in_count, in_type, in_data, in_dist, motor, led
             next_move[i] = tick + 16 + np.int64(rng.random() * 64.0)
 
 
+@njit(cache=True)
+def randomwalk_step(tick, alive, in_count, in_type, in_data, in_dist, motor, led, out_on,
+                    out_type, out_data, mem, rng):
+    """One control tick for all robots (signature: the fast-path controller contract):
+    :func:`randomwalk_part` over all robots, then :func:`randomwalk_rest` (the moves draw
+    from ``rng`` in robot order either way, so splitting changes no result)."""
+    randomwalk_part(0, alive.shape[0], tick, alive, in_count, in_type, in_data, in_dist,
+                    motor, led, out_on, out_type, out_data, mem)
+    randomwalk_rest(tick, alive, in_count, in_type, in_data, in_dist, motor, led, out_on,
+                    out_type, out_data, mem, rng)
+
+
 class RandomWalk:
     """The random-walk controller for ``n`` robots (fast path: ``step`` + ``mem``)."""
 
@@ -106,6 +130,8 @@ class RandomWalk:
 
     def __init__(self, n: int) -> None:
         self.step = randomwalk_step
+        self.part_step = randomwalk_part
+        self.rest_step = randomwalk_rest
         if n > 65536:
             raise ValueError("the random walk encodes IDs in 2 bytes: at most 65536 robots")
         self.mem = (
