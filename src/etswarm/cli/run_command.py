@@ -53,6 +53,10 @@ from etswarm.algorithm.layout import LAYOUTS
               help="While electing, robots flood where placed neighbours fell silent (dead "
                    "robots) and the Leader keeps the scaled target off those sites "
                    "(--no-silent-sites: it places it from the robots it hears alone).")
+@click.option("--queue-stride/--no-queue-stride", default=False, show_default=True,
+              help="Along the repository a searcher near its aim drives straight on instead "
+                   "of pivoting (experimental: T formed sooner, but seed-specific "
+                   "regeneration runs changed).")
 @click.option("--fit", is_flag=True, help="With fewer robots than cells, form scale(shape, N).")
 @click.option("--damage", "damage", multiple=True, metavar="SPEC",
               help="Damage 'KIND REGION [at=TIME]', e.g. 'split x=0' (repeatable).")
@@ -69,7 +73,7 @@ from etswarm.algorithm.layout import LAYOUTS
 def run(shape: str, robots: int | None, seed: int, loss: float, noise: float, max_time: float,
         layout: str, release_interval: float | None, census: str, orbit: str, creep: bool,
         second_ring: bool, hole_memory: bool, pocket: bool, release_order: str,
-        silent_sites: bool, fit: bool,
+        silent_sites: bool, queue_stride: bool, fit: bool,
         damage: tuple[str, ...],
         out: Path | None, video: Path | None, fps: float, speedup: float, snapshots: bool,
         as_json: bool) -> None:
@@ -88,7 +92,8 @@ def run(shape: str, robots: int | None, seed: int, loss: float, noise: float, ma
                   hole_memory="on" if hole_memory else "off",
                   pocket="on" if pocket else "off",
                   release_order=release_order,
-                  silent_sites="on" if silent_sites else "off")
+                  silent_sites="on" if silent_sites else "off",
+                  queue_stride="on" if queue_stride else "off")
     if release_interval is not None:
         et = replace(et, release_interval_s=release_interval)
     config = RunConfig(shape=shape, robots=robots, seed=seed, loss=loss, noise_mm=noise,
