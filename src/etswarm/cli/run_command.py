@@ -55,8 +55,8 @@ from etswarm.algorithm.layout import LAYOUTS
                    "(--no-silent-sites: it places it from the robots it hears alone).")
 @click.option("--queue-stride/--no-queue-stride", default=False, show_default=True,
               help="Along the repository a searcher near its aim drives straight on instead "
-                   "of pivoting (experimental: T formed sooner, but seed-specific "
-                   "regeneration runs changed).")
+                   "of pivoting (experimental: T formed sooner, but remnants re-formed "
+                   "less often after splits).")
 @click.option("--fit", is_flag=True, help="With fewer robots than cells, form scale(shape, N).")
 @click.option("--damage", "damage", multiple=True, metavar="SPEC",
               help="Damage 'KIND REGION [at=TIME]', e.g. 'split x=0' (repeatable).")
