@@ -21,6 +21,7 @@ import os
 import statistics
 from collections import Counter
 from concurrent.futures import ProcessPoolExecutor
+from dataclasses import fields
 from typing import Any
 
 from etswarm.algorithm.params import ETParams
@@ -113,10 +114,7 @@ def parse_case(text: str) -> tuple[str, str]:
 def parse_option(text: str) -> tuple[str, str]:
     """``NAME=VALUE`` for ``--et``; only ETParams' text options are accepted."""
     name, _, value = text.partition("=")
-    choices = {
-        "census", "orbit", "creep", "second_ring", "hole_memory", "pocket",
-        "release_order", "queue_stride", "silent_sites",
-    }
+    choices = {f.name for f in fields(ETParams) if isinstance(f.default, str)}
     if name not in choices or not value:
         raise argparse.ArgumentTypeError(f"--et {text!r}: expected NAME=VALUE, NAME in {choices}")
     return name, value

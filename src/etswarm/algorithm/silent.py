@@ -45,7 +45,7 @@ from etswarm.algorithm.memory import (
     R_TAG_Y,
     SILENT_MAX,
 )
-from etswarm.algorithm.messages import EPOCH_SHIFT, MSG_SILENT
+from etswarm.algorithm.messages import EPOCH_SHIFT, MSG_SILENT, get_i8
 from etswarm.algorithm.params import C_SILENT_SITES
 
 #: A placed neighbour not heard for this long (ticks) has fallen silent ...
@@ -149,9 +149,9 @@ def ingest_silent(i, k, tick, ri, in_data, elected_epoch):  # type: ignore[no-un
         return
     n_tags = min(int(in_data[i, k, 2]), TAGS_PER_MESSAGE)
     for t in range(n_tags):
-        x = int(in_data[i, k, 3 + 2 * t])
-        y = int(in_data[i, k, 4 + 2 * t])
-        add_silent(i, tick, ri, x - 256 if x >= 128 else x, y - 256 if y >= 128 else y)
+        x = get_i8(in_data[i, k], 3 + 2 * t)
+        y = get_i8(in_data[i, k], 4 + 2 * t)
+        add_silent(i, tick, ri, x, y)
 
 
 def silent_tags(ri, i: int) -> set[tuple[int, int]]:  # type: ignore[no-untyped-def]
