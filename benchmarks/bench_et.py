@@ -7,7 +7,7 @@ and the number of runs that ended with a tag held by two robots.
 
     .venv/bin/python benchmarks/bench_et.py speed [--seconds 600]
     .venv/bin/python benchmarks/bench_et.py formation [--seeds 20] [--shapes T,dumbbell,starfish]
-        [--jobs 2]
+        [--jobs 2] [--et NAME=VALUE ...]
 
 With ``--jobs J`` the formation runs go to J worker processes (one per core: the wall
 times stay per run, as long as nothing else loads the machine).
@@ -26,7 +26,9 @@ from typing import Any
 
 import numpy as np
 
+from etswarm.algorithm.params import ETParams, parse_et_option
 from etswarm.algorithm.run import ETRun, RunConfig
+from etswarm.errors import EtswarmError
 
 
 def disc_bitmap(cells: int, path: Path) -> Path:
@@ -70,16 +72,29 @@ def speed(seconds: float) -> None:
         )
 
 
-def formation_run(shape: str, seed: int, max_time_s: float) -> dict[str, Any]:
+def formation_run(
+    shape: str, seed: int, max_time_s: float, et_options: dict[str, Any]
+) -> dict[str, Any]:
     """The summary of one formation run."""
-    return ETRun(RunConfig(shape=shape, seed=seed, max_time_s=max_time_s)).run()
+    config = RunConfig(shape=shape, seed=seed, max_time_s=max_time_s, et=ETParams(**et_options))
+    return ETRun(config).run()
 
 
-def formation(seeds: int, shapes: list[str], max_time_s: float, jobs: int) -> None:
-    print(f"load average {os.getloadavg()}, {jobs} job(s)")
+def parse_option(text: str) -> tuple[str, Any]:
+    """``NAME=VALUE`` for ``--et``: any ETParams field."""
+    try:
+        return parse_et_option(text)
+    except EtswarmError as err:
+        raise argparse.ArgumentTypeError(str(err)) from None
+
+
+def formation(
+    seeds: int, shapes: list[str], max_time_s: float, jobs: int, et_options: dict[str, Any]
+) -> None:
+    print(f"load average {os.getloadavg()}, {jobs} job(s), ET options {et_options or 'default'}")
     with ProcessPoolExecutor(max_workers=jobs) as pool:
         futures = {
-            (shape, seed): pool.submit(formation_run, shape, seed, max_time_s)
+            (shape, seed): pool.submit(formation_run, shape, seed, max_time_s, et_options)
             for shape in shapes
             for seed in range(seeds)
         }
@@ -112,11 +127,15 @@ def main() -> None:
     parser.add_argument("--shapes", default="T,dumbbell,starfish")
     parser.add_argument("--max-time", type=float, default=4 * 3600.0)
     parser.add_argument("--jobs", type=int, default=1, help="worker processes (formation)")
+    parser.add_argument(
+        "--et", type=parse_option, action="append", default=[], metavar="NAME=VALUE",
+        help="An ETParams field for every formation run, e.g. pair_aim_mm=-1 (repeatable).",
+    )
     args = parser.parse_args()
     if args.what == "speed":
         speed(args.seconds)
     else:
-        formation(args.seeds, args.shapes.split(","), args.max_time, args.jobs)
+        formation(args.seeds, args.shapes.split(","), args.max_time, args.jobs, dict(args.et))
 
 
 if __name__ == "__main__":

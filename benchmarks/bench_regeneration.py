@@ -21,11 +21,11 @@ import os
 import statistics
 from collections import Counter
 from concurrent.futures import ProcessPoolExecutor
-from dataclasses import fields
 from typing import Any
 
-from etswarm.algorithm.params import ETParams
+from etswarm.algorithm.params import ETParams, parse_et_option
 from etswarm.algorithm.run import ETRun, RunConfig
+from etswarm.errors import EtswarmError
 
 CASES = (
     ("triangle", "split x=0"),
@@ -111,13 +111,12 @@ def parse_case(text: str) -> tuple[str, str]:
     return shape, damage
 
 
-def parse_option(text: str) -> tuple[str, str]:
-    """``NAME=VALUE`` for ``--et``; only ETParams' text options are accepted."""
-    name, _, value = text.partition("=")
-    choices = {f.name for f in fields(ETParams) if isinstance(f.default, str)}
-    if name not in choices or not value:
-        raise argparse.ArgumentTypeError(f"--et {text!r}: expected NAME=VALUE, NAME in {choices}")
-    return name, value
+def parse_option(text: str) -> tuple[str, float | int | str]:
+    """``NAME=VALUE`` for ``--et``: any ETParams field."""
+    try:
+        return parse_et_option(text)
+    except EtswarmError as err:
+        raise argparse.ArgumentTypeError(str(err)) from None
 
 
 def main() -> None:

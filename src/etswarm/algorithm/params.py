@@ -47,7 +47,9 @@ F_CLOSING = 5  # assumed worst-case closing speed between readings, mm per tick
 F_CLEARANCE = 6  # a searcher turns away from any other robot nearer than this
 F_BALANCE_TOL = 7  # the two references' distances may differ by at most this
 F_WALK_COLLECT = 8  # the census walker records the tags of robots heard nearer than this
-N_CF = 9
+F_PAIR_AIM = 9  # the pair window is centred this far from d (negative: nearer)
+F_WIDEN_MAX = 10  # a searcher long at the shape widens its tolerances up to this factor
+N_CF = 11
 
 #: Census methods (``ETParams.census``): the paper's periphery walk, or a spanning tree.
 CENSUS_METHODS = ("tree", "walk")
@@ -57,7 +59,9 @@ ORBIT_MODES = ("bounce", "clockwise")
 
 
 #: Parameters that may be zero (all others must be positive).
-NON_NEGATIVE = frozenset({"follow_offset_mm"})
+NON_NEGATIVE: frozenset[str] = frozenset()
+#: Parameters that may take any sign.
+SIGNED = frozenset({"pair_aim_mm", "follow_offset_mm"})
 
 
 @dataclass(frozen=True)
@@ -76,6 +80,13 @@ class ETParams:
     yield_max_s: float = 30.0
     steer_fresh_s: float = 3.0
     pair_tol_mm: float = 4.0
+    #: Offset of the pair window's centre from d. A searcher orbits at d from the nearest
+    #: placed robot and enters the window from outside, so it tends to stop on the far
+    #: side of a site; a negative offset moves the window in to meet it.
+    pair_aim_mm: float = 0.0
+    #: A searcher at the shape for 20 min has widened its pair and balance tolerances to
+    #: this factor (at pockets of three or more placed neighbours); 1 never widens.
+    widen_max: float = 3.0
     consistency_tol_mm: float = 16.0
     follow_offset_mm: float = 0.0
     closing_speed_mm_s: float = 5.0
@@ -115,9 +126,10 @@ class ETParams:
     #: hops) from the scaled shape's robots ("far"), so the repository stays connected to
     #: the shape, or the lowest ID, as at the start ("id", the paper). See ``release``.
     release_order: str = "far"
-    #: Along the repository (no placed robot heard yet) a searcher near its aim drives
-    #: straight on instead of pivoting ("on"), or pivots to and fro as along the shape
-    #: ("off", the paper's edge-following).
+    #: In the first formation, along the repository (no placed robot heard yet) a searcher
+    #: near its aim drives straight on instead of pivoting ("on"), or pivots to and fro as
+    #: along the shape ("off", the paper's edge-following). After a regeneration the
+    #: Queued robots stand packed round the shape and every searcher edge-follows.
     queue_stride: str = "off"
     #: While electing, robots note and flood where placed neighbours fell silent, and the
     #: Leader keeps the scaled target off those sites ("on", see ``silent``), or places it
@@ -141,6 +153,11 @@ class ETParams:
             elif f.name == "orbit":
                 if value not in ORBIT_MODES:
                     raise EtswarmError(f"orbit must be one of {ORBIT_MODES}, got {value!r}")
+            elif f.name in SIGNED:
+                continue
+            elif f.name == "widen_max":
+                if not value >= 1:
+                    raise EtswarmError(f"ET parameter widen_max must be >= 1, got {value}")
             elif f.name in NON_NEGATIVE:
                 if not value >= 0:
                     raise EtswarmError(f"ET parameter {f.name} must be >= 0, got {value}")
@@ -194,6 +211,8 @@ class ETParams:
         cf = np.zeros(N_CF, dtype=np.float64)
         cf[F_SPACING] = self.spacing_mm
         cf[F_PAIR_TOL] = self.pair_tol_mm
+        cf[F_PAIR_AIM] = self.pair_aim_mm
+        cf[F_WIDEN_MAX] = self.widen_max
         cf[F_CONSIST_TOL] = self.consistency_tol_mm
         cf[F_YIELD_DIST] = self.yield_distance_mm
         cf[F_FOLLOW_OFFSET] = self.follow_offset_mm
@@ -202,3 +221,28 @@ class ETParams:
         cf[F_BALANCE_TOL] = self.balance_tol_mm
         cf[F_WALK_COLLECT] = self.census_collect_mm
         return ci, cf
+
+
+def parse_et_option(text: str) -> tuple[str, float | int | str]:
+    """``NAME=VALUE`` (``--et``) -> (field of ``ETParams``, value of that field's type).
+
+    Raises ``EtswarmError`` naming the option when the name is unknown or the value does
+    not parse; ``ETParams`` itself then checks the range.
+    """
+    name, sep, value = text.partition("=")
+    name = name.strip().replace("-", "_")
+    value = value.strip()
+    kinds = {f.name: type(f.default) for f in fields(ETParams)}
+    if not sep or name not in kinds or not value:
+        raise EtswarmError(
+            f"--et {text!r}: expected NAME=VALUE with NAME one of {', '.join(sorted(kinds))}"
+        )
+    kind = kinds[name]
+    if kind is str:
+        return name, value
+    try:
+        return name, kind(value)
+    except ValueError:
+        raise EtswarmError(
+            f"--et {text!r}: {name} takes a number ({kind.__name__}), got {value!r}"
+        ) from None

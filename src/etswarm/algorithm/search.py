@@ -36,6 +36,7 @@ from etswarm.algorithm.memory import (
     R_COOLDOWN,
     R_COUNT,
     R_CREEP_UNTIL,
+    R_EPOCH,
     R_HAS_TAG,
     R_LOST_SINCE,
     R_NN,
@@ -73,8 +74,10 @@ from etswarm.algorithm.params import (
     F_CLOSING,
     F_CONSIST_TOL,
     F_FOLLOW_OFFSET,
+    F_PAIR_AIM,
     F_PAIR_TOL,
     F_SPACING,
+    F_WIDEN_MAX,
     F_YIELD_DIST,
 )
 from etswarm.algorithm.pocket import POCKET_AFTER_TICKS, pocket_site
@@ -100,9 +103,8 @@ CREEP_TOL_SCALE = 3.0
 #: A searcher that has pivoted towards the group this long (ticks) without once being
 #: nearer than its aim is circling out of reach; it then drives on while closing in.
 CIRCLING_TICKS = 31 * 10
-#: A searcher's pair and balance tolerances grow linearly from 1x to ``WIDEN_MAX`` x over
-#: its first ``WIDEN_TICKS`` at the shape (since it first heard a placed robot).
-WIDEN_MAX = 3.0
+#: A searcher's pair and balance tolerances grow linearly from 1x to ``ETParams.widen_max``
+#: x over its first ``WIDEN_TICKS`` at the shape (since it first heard a placed robot).
 WIDEN_TICKS = 31 * 1200
 #: ... but only at a site with at least this many placed neighbours heard.
 WIDE_MIN_NEIGHBOURS = 3
@@ -198,9 +200,10 @@ def in_window(dist_a, dist_b, d, cf, tol_scale):  # type: ignore[no-untyped-def]
     tolerance of d and within the balance tolerance of each other (both times
     ``tol_scale``)."""
     pair_tol = cf[F_PAIR_TOL] * tol_scale
+    aim = d + cf[F_PAIR_AIM]
     return (
-        abs(dist_a - d) <= pair_tol
-        and abs(dist_b - d) <= pair_tol
+        abs(dist_a - aim) <= pair_tol
+        and abs(dist_b - aim) <= pair_tol
         and abs(dist_a - dist_b) <= cf[F_BALANCE_TOL] * tol_scale
     )
 
@@ -306,6 +309,7 @@ def find_site(  # type: ignore[no-untyped-def]
     """
     d = cf[F_SPACING]
     pair_tol = cf[F_PAIR_TOL] * tol_scale
+    pair_aim = d + cf[F_PAIR_AIM]
     consist_tol = cf[F_CONSIST_TOL]
     second_ring = ci[C_SECOND_RING]
     hole_memory = ci[C_HOLE_MEMORY] == 1
@@ -318,14 +322,14 @@ def find_site(  # type: ignore[no-untyped-def]
     for a in range(slots):
         if nb[i, a, NB_ID] < 0 or not is_placed(nb[i, a, NB_STATE]):
             continue
-        if nb[i, a, NB_LAST] < since or abs(nb_dist[i, a] - d) > pair_tol:
+        if nb[i, a, NB_LAST] < since or abs(nb_dist[i, a] - pair_aim) > pair_tol:
             continue
         ax = nb[i, a, NB_TX]
         ay = nb[i, a, NB_TY]
         for b in range(a + 1, slots):
             if nb[i, b, NB_ID] < 0 or not is_placed(nb[i, b, NB_STATE]):
                 continue
-            if nb[i, b, NB_LAST] < since or abs(nb_dist[i, b] - d) > pair_tol:
+            if nb[i, b, NB_LAST] < since or abs(nb_dist[i, b] - pair_aim) > pair_tol:
                 continue
             if not in_window(nb_dist[i, a], nb_dist[i, b], d, cf, tol_scale):
                 # Settle midway between the two references, not where the window opens.
@@ -499,7 +503,7 @@ def search_rule(  # type: ignore[no-untyped-def]
     pocket = False
     if ri[i, R_SHAPE_SINCE] > 0:
         at_shape = tick - ri[i, R_SHAPE_SINCE] + 1
-        widen = 1.0 + (WIDEN_MAX - 1.0) * min(1.0, at_shape / WIDEN_TICKS)
+        widen = 1.0 + (cf[F_WIDEN_MAX] - 1.0) * min(1.0, at_shape / WIDEN_TICKS)
         # Long at the shape, it may also take a site from the robots round it (``pocket``).
         pocket = ci[C_POCKET] == 1 and at_shape >= POCKET_AFTER_TICKS
     if ri[i, R_SUB] == SUB_SETTLE:
@@ -600,7 +604,9 @@ def search_rule(  # type: ignore[no-untyped-def]
     clearance = cf[F_CLEARANCE]
     away = LEFT if ri[i, R_ORBIT] == 0 else RIGHT
     toward = RIGHT if ri[i, R_ORBIT] == 0 else LEFT
-    along_repository = placed_slot < 0 and ci[C_QUEUE_STRIDE] == 1
+    # Only the first formation's repository is a queue to walk along; after a
+    # regeneration the Queued robots stand packed round the shape.
+    along_repository = placed_slot < 0 and ci[C_QUEUE_STRIDE] == 1 and ri[i, R_EPOCH] == 0
     if obstacle < clearance or nearest < clearance or (not lost and reading < aim):
         if along_repository and obstacle >= clearance and reading >= aim - STRIDE_BAND_MM:
             motor[i] = FORWARD  # the repository is no place to settle: stride along it

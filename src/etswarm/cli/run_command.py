@@ -54,9 +54,12 @@ from etswarm.algorithm.layout import LAYOUTS
                    "robots) and the Leader keeps the scaled target off those sites "
                    "(--no-silent-sites: it places it from the robots it hears alone).")
 @click.option("--queue-stride/--no-queue-stride", default=False, show_default=True,
-              help="Along the repository a searcher near its aim drives straight on instead "
-                   "of pivoting (experimental: T formed sooner, but remnants re-formed "
-                   "less often after splits).")
+              help="In the first formation, a searcher along the queue near its aim drives "
+                   "straight on instead of pivoting (--no-queue-stride: the paper's "
+                   "edge-following all the way).")
+@click.option("--et", "et_options", multiple=True, metavar="NAME=VALUE",
+              help="Set any ETParams field, e.g. --et pair_aim_mm=-1 (repeatable; see "
+                   "docs/algorithm.md). Applied after the options above.")
 @click.option("--fit", is_flag=True, help="With fewer robots than cells, form scale(shape, N).")
 @click.option("--damage", "damage", multiple=True, metavar="SPEC",
               help="Damage 'KIND REGION [at=TIME]', e.g. 'split x=0' (repeatable).")
@@ -73,12 +76,12 @@ from etswarm.algorithm.layout import LAYOUTS
 def run(shape: str, robots: int | None, seed: int, loss: float, noise: float, max_time: float,
         layout: str, release_interval: float | None, census: str, orbit: str, creep: bool,
         second_ring: bool, hole_memory: bool, pocket: bool, release_order: str,
-        silent_sites: bool, queue_stride: bool, fit: bool,
+        silent_sites: bool, queue_stride: bool, et_options: tuple[str, ...], fit: bool,
         damage: tuple[str, ...],
         out: Path | None, video: Path | None, fps: float, speedup: float, snapshots: bool,
         as_json: bool) -> None:
     """Grow SHAPE (a library name or a bitmap file) with the ET algorithm."""
-    from etswarm.algorithm.params import ETParams
+    from etswarm.algorithm.params import ETParams, parse_et_option
     from etswarm.algorithm.run import ETRun, RunConfig
     from etswarm.cli.run_outputs import describe, drive, write_summary
     from etswarm.errors import EtswarmError
@@ -96,6 +99,7 @@ def run(shape: str, robots: int | None, seed: int, loss: float, noise: float, ma
                   queue_stride="on" if queue_stride else "off")
     if release_interval is not None:
         et = replace(et, release_interval_s=release_interval)
+    et = replace(et, **dict(parse_et_option(text) for text in et_options))
     config = RunConfig(shape=shape, robots=robots, seed=seed, loss=loss, noise_mm=noise,
                        max_time_s=max_time, layout=layout, fit=fit, damage=damage, et=et,
                        census=census)
