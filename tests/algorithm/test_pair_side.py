@@ -11,6 +11,7 @@ on from that site, and robots of the two lattices ended up holding one tag.
 from __future__ import annotations
 
 import numpy as np
+import pytest
 
 from etswarm.algorithm.memory import (
     NB_ID,
@@ -31,6 +32,7 @@ from etswarm.algorithm.search import (
     FROM_MOVING_TICKS,
     begin_search,
     came_from,
+    find_site,
     follow_reference,
     search_rule,
     track_trend,
@@ -92,7 +94,26 @@ def pair_world():  # type: ignore[no-untyped-def]
     return ri, nb, nb_dist, gene_flag, gene_nn, ci, cf, held
 
 
+def test_the_site_is_on_the_side_of_the_robot_it_came_from() -> None:
+    _, nb, nb_dist, gene_flag, _, ci, cf, held = pair_world()
+    nb[0, :2, NB_LAST] = 10
+    nb_dist[0, :2] = (40.0, 40.6)
+    memory = (held[0], *WINDOW)
+    gene_flag = gene_flag.astype(np.int64)  # as test_search_rules: one compilation for both
+    # Nearest is A (robot 1); it came from B (robot 2): on the left of B->A, (0, -1).
+    found, x, y, _ = find_site(0, 10, 0, True, 1, 2, 0, nb, nb_dist, gene_flag, ci, cf, 1.0, 3,
+                               *memory)
+    assert (found, x, y) == (True, 0, -1)
+    # It came from A, or from elsewhere with A passed first: on the left of A->B, (1, 1).
+    for came in (1, 5, -1):
+        found, x, y, _ = find_site(0, 10, 0, True, 1, came, 0, nb, nb_dist, gene_flag, ci, cf,
+                                   1.0, 3, *memory)
+        assert (found, x, y) == (True, 1, 1)
+
+
+@pytest.mark.slow
 def test_a_searcher_takes_the_site_on_the_side_it_passes_on() -> None:
+    # The whole search rule, tick by tick (compiling it takes most of a minute).
     ri, nb, nb_dist, gene_flag, gene_nn, ci, cf, held = pair_world()
     motor = np.zeros(1, dtype=np.int64)
     begin_search(0, 0, ri)
