@@ -40,7 +40,7 @@ def test_a_searcher_inside_a_stretched_ring_takes_its_middle() -> None:
     # the paper's localisation finds nothing, but the pocket does.
     ring = {(0, 1): 55.0, (1, 1): 60.0, (1, 0): 58.0, (0, -1): 62.0}
     gene, ci, cf, nb, nb_dist, held = pocket_world(ring)
-    found, *_ = find_site(0, TICK, TICK - 10, False, -1, 0, nb, nb_dist, gene, ci, cf, 3.0, 3,
+    found, *_ = find_site(0, TICK, TICK - 10, False, -1, -1, 0, nb, nb_dist, gene, ci, cf, 3.0, 3,
                           held, ORIGIN, ORIGIN)
     assert not found
     found, x, y, ts = pocket_site(0, TICK, TICK - 10, nb, nb_dist, gene, ci, cf, held, ORIGIN,

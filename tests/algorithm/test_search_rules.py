@@ -162,7 +162,7 @@ def test_second_ring_pairs_find_the_site_between_them() -> None:
     for option, expected in [("on", (True, 0, 1)), ("off", (False, 0, 0))]:
         gene, ci, cf, nb, nb_dist = two_reference_table(option, holder_heard=False)
         found, x, y, _ = find_site(
-            0, 10, 0, False, -1, 0, nb, nb_dist, gene, ci, cf, 1.0, 3, *NO_MEMORY
+            0, 10, 0, False, -1, -1, 0, nb, nb_dist, gene, ci, cf, 1.0, 3, *NO_MEMORY
         )
         assert (found, x, y) == expected
 
@@ -174,10 +174,14 @@ def test_a_site_whose_reported_neighbour_is_not_heard_is_refused_on_settling() -
     # would hear it at about d, so it is somewhere else. Settling (strict), it refuses.
     gene, ci, cf, nb, nb_dist = two_reference_table("on", holder_heard=False)
     assert reported_but_unheard(0, 0, 1, 0, nb)
-    found, *_ = find_site(0, 10, 0, True, -1, 0, nb, nb_dist, gene, ci, cf, 1.0, 3, *NO_MEMORY)
+    found, *_ = find_site(
+        0, 10, 0, True, -1, -1, 0, nb, nb_dist, gene, ci, cf, 1.0, 3, *NO_MEMORY
+    )
     assert not found
     # Once the holder of (1, 1) is heard too, the site is confirmed.
     gene, ci, cf, nb, nb_dist = two_reference_table("on", holder_heard=True)
     assert not reported_but_unheard(0, 0, 1, 0, nb)
-    found, x, y, _ = find_site(0, 10, 0, True, -1, 0, nb, nb_dist, gene, ci, cf, 1.0, 3, *NO_MEMORY)
+    found, x, y, _ = find_site(
+        0, 10, 0, True, -1, -1, 0, nb, nb_dist, gene, ci, cf, 1.0, 3, *NO_MEMORY
+    )
     assert (found, x, y) == (True, 0, 1)

@@ -86,6 +86,7 @@ from etswarm.algorithm.placed import placed_rule
 from etswarm.algorithm.regeneration import (
     TARGET_RELAY_TICKS,
     announcement_rule,
+    catch_up,
     election_rule,
     join_election,
 )
@@ -290,6 +291,9 @@ def et_step(  # type: ignore[no-untyped-def]
                     join_election(i, tick, ri, ci)
                     motor[i] = STOP
                     break
+        if ri[i, R_PHASE] == PHASE_NORMAL and ri[i, R_PEND_EPOCH] > ri[i, R_EPOCH]:
+            # It missed the election of a newer target that it has now heard of.
+            catch_up(i, tick, ri, nb, gene_flag, gene_nn, slot_info, ci)
         state = ri[i, R_STATE]
         slot = ri[i, R_TSLOT]
         due = (tick + i) % every == 0

@@ -106,7 +106,13 @@ R_SILENT_NEXT = 69  # the next of them to send
 R_SILENT_ADDED = 70  # tick it last learnt of a new one
 R_SILENT0 = 71  # the first of SILENT_MAX fields: silent sites' tags (``silent.pack_tag``)
 SILENT_MAX = 8
-R_FIELDS = R_SILENT0 + SILENT_MAX
+# The side of a pair a searcher passes on (``search.find_site``) follows from which of the
+# two it came from: the reference it steered by before the current one, kept only if it
+# steered by it while moving for a while (at the midpoint of a pair the nearest robot
+# flickers between the two, so the current reference alone says nothing).
+R_FROM_ID = R_SILENT0 + SILENT_MAX  # the reference before the current one (-1: none)
+R_REF_MOVED = R_FROM_ID + 1  # ticks the searcher moved since its current reference took over
+R_FIELDS = R_REF_MOVED + 1
 
 PHASE_NORMAL = 0
 PHASE_ELECTING = 1
@@ -160,6 +166,7 @@ def allocate(n_robots: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     ri[:, R_YIELD_SINCE] = -1
     ri[:, R_BELOW_SINCE] = -1
     ri[:, R_REF_ID] = -1
+    ri[:, R_FROM_ID] = -1
     ri[:, R_YLD_ID] = -1
     ri[:, R_PARENT] = -1
     ri[:, R_PEND_EPOCH] = -1

@@ -32,7 +32,9 @@ from etswarm.algorithm.kernel_util import (
     INACTIVE,
     LEADER,
     QUEUED,
+    SEARCH,
     gene_at,
+    is_placed,
     set_state,
 )
 from etswarm.algorithm.memory import (
@@ -41,8 +43,13 @@ from etswarm.algorithm.memory import (
     NB_ELAST,
     NB_ELEADER,
     NB_EPARENT,
+    NB_EPOCH,
     NB_ESUB,
     NB_ID,
+    NB_LAST,
+    NB_STATE,
+    NB_TX,
+    NB_TY,
     PHASE_ELECTING,
     PHASE_NORMAL,
     R_ADOPTED_AT,
@@ -273,3 +280,43 @@ def announcement_rule(i, tick, ri, nb, gene_flag, gene_nn, slot_info, ci):  # ty
             adopt_target(i, tick, ri, nb, slot, pend, leader, gene_flag, gene_nn, slot_info, ci)
             return True
     return False
+
+
+@njit
+def catch_up(i, tick, ri, nb, gene_flag, gene_nn, slot_info, ci):  # type: ignore[no-untyped-def]
+    """Robot i, not electing, has heard the announcement of a newer target than its own
+    (R_PEND_*): it missed that election (it was searching out of range, or it belongs to
+    another remnant that has come within range). It adopts the target as the electing
+    robots do, with three differences: it is never the new seed; a searcher goes on
+    searching, for the new target; and a placed robot gives up its tag when it hears a
+    robot of the new target on it (otherwise both would keep it). Returns True when it
+    adopted the target.
+
+    Before this, such a robot worked for its old target for good: its neighbours of the
+    newer one ignore robots of other epochs, so the remnant could never become Stable
+    round it, and a searcher took a site of the old target among the new one's robots."""
+    slot = find_slot(slot_info, ri[i, R_PEND_N], ri[i, R_PEND_TX], ri[i, R_PEND_TY])
+    if slot < 0:
+        return False
+    epoch = ri[i, R_PEND_EPOCH]
+    if ri[i, R_STATE] == SEARCH:
+        ri[i, R_EPOCH] = epoch
+        ri[i, R_TSLOT] = slot
+        ri[i, R_ADOPTED_AT] = tick
+        ri[i, R_LEADER] = -1
+        return True
+    if ri[i, R_HAS_TAG] == 1:
+        fresh = ci[C_TICKS_NB_FRESH]
+        for m in range(nb.shape[1]):
+            if (
+                nb[i, m, NB_ID] >= 0
+                and is_placed(nb[i, m, NB_STATE])
+                and nb[i, m, NB_EPOCH] == epoch
+                and tick - nb[i, m, NB_LAST] <= fresh
+                and nb[i, m, NB_TX] == ri[i, R_TAG_X]
+                and nb[i, m, NB_TY] == ri[i, R_TAG_Y]
+            ):
+                ri[i, R_HAS_TAG] = 0
+                break
+    adopt_target(i, tick, ri, nb, slot, epoch, -1, gene_flag, gene_nn, slot_info, ci)
+    return True

@@ -37,12 +37,14 @@ from etswarm.algorithm.memory import (
     R_COUNT,
     R_CREEP_UNTIL,
     R_EPOCH,
+    R_FROM_ID,
     R_HAS_TAG,
     R_LOST_SINCE,
     R_NN,
     R_ON_SHAPE,
     R_ORBIT,
     R_REF_ID,
+    R_REF_MOVED,
     R_REF_TREND,
     R_SHAPE_SINCE,
     R_SUB,
@@ -114,6 +116,11 @@ STRIDE_BAND_MM = 4.0
 CREEP_PERIOD_TICKS = 24
 CREEP_STOP_TICKS = 16
 CREEP_HOLD_TICKS = 62
+#: A reference the searcher steered by while moving for at least this many ticks counts as
+#: the one it came from once another takes over (``follow_reference``). Passing a robot
+#: takes several seconds of pivoting; at the midpoint of a pair the nearest robot flips
+#: back and forth with every reading, each time for a fraction of that.
+FROM_MOVING_TICKS = 62
 
 
 @njit
@@ -131,6 +138,35 @@ def begin_search(i, tick, ri):  # type: ignore[no-untyped-def]
     ri[i, R_CREEP_UNTIL] = 0
     ri[i, R_LOST_SINCE] = 0
     ri[i, R_TOWARD_SINCE] = tick
+    ri[i, R_FROM_ID] = -1
+    ri[i, R_REF_MOVED] = 0
+
+
+@njit
+def follow_reference(i, ri, nb, slot, moving):  # type: ignore[no-untyped-def]
+    """Robot i steers by the robot in table row ``slot`` this tick; ``moving``: its last
+    motor command was not STOP. When the reference changes, the old one becomes the robot
+    it came from (R_FROM_ID), if it steered by it while moving for ``FROM_MOVING_TICKS``;
+    a reference that was nearest only for a moment (the two of a pair flicker at its
+    midpoint) leaves R_FROM_ID as it was."""
+    sid = nb[i, slot, NB_ID]
+    if sid != ri[i, R_REF_ID]:
+        if ri[i, R_REF_ID] >= 0 and ri[i, R_REF_MOVED] >= FROM_MOVING_TICKS:
+            ri[i, R_FROM_ID] = ri[i, R_REF_ID]
+        ri[i, R_REF_MOVED] = 0
+    if moving:
+        ri[i, R_REF_MOVED] += 1
+
+
+@njit(inline="always")
+def came_from(ref_id, from_id, a_id, b_id):  # type: ignore[no-untyped-def]
+    """Which of the pair (a_id, b_id) a searcher that steers by ``ref_id`` and came from
+    ``from_id`` (see ``follow_reference``) passed first; -1 when it steers by neither."""
+    if ref_id != a_id and ref_id != b_id:
+        return -1
+    if from_id in (a_id, b_id):
+        return from_id
+    return ref_id
 
 
 @njit
@@ -282,8 +318,8 @@ def closes_a_hole(i, cx, cy, nb, gene_flag, ci):  # type: ignore[no-untyped-def]
 
 @njit
 def find_site(  # type: ignore[no-untyped-def]
-    i, tick, since, strict, ref_id, orbit, nb, nb_dist, gene_flag, ci, cf, tol_scale, wide_min,
-    held_i, ox, oy,
+    i, tick, since, strict, ref_id, from_id, orbit, nb, nb_dist, gene_flag, ci, cf, tol_scale,
+    wide_min, held_i, ox, oy,
 ):
     """Localise robot i from its placed neighbours (paper Sec. 4.1).
 
@@ -292,8 +328,9 @@ def find_site(  # type: ignore[no-untyped-def]
     only with evidence that it is not at ``c2``: ``c2`` is held by a robot it knows of, a
     third placed robot heard since ``since`` is at the distance ``c`` predicts and not at
     the one ``c2`` predicts, or ``c`` is on the outer side of the pair for a robot that
-    orbits clockwise (``orbit`` 0; the other side for 1) from the reference ``ref_id`` it
-    followed. ``c`` must also have gene
+    orbits clockwise (``orbit`` 0; the other side for 1) from the one of the two it came
+    from: ``from_id`` if it is one of them, else the reference ``ref_id`` it steers by
+    (see ``came_from``; nothing when it steers by neither). ``c`` must also have gene
     flag 1, be held by no robot it knows of, agree with every placed robot heard since
     ``since`` and, when ``strict``, every known robot of a neighbouring site must have
     been heard since ``since``; and
@@ -342,11 +379,12 @@ def find_site(  # type: ignore[no-untyped-def]
                 # Lattice neighbours: the two sites next to both flank the edge a-b.
                 s0 = (k + 5) % 6
                 s1 = (k + 1) % 6
-                # Orbiting clockwise from the reference it followed towards the other
-                # one, the robot is on the outer side: left of a->b when it came from a.
-                if nb[i, a, NB_ID] == ref_id:
+                # Orbiting clockwise from the one it came from towards the other, the
+                # robot is on the outer side: left of a->b when it came from a.
+                came = came_from(ref_id, from_id, nb[i, a, NB_ID], nb[i, b, NB_ID])
+                if came >= 0 and came == nb[i, a, NB_ID]:
                     outer_side = 0
-                elif nb[i, b, NB_ID] == ref_id:
+                elif came >= 0 and came == nb[i, b, NB_ID]:
                     outer_side = 1
                 if outer_side >= 0 and orbit == 1:
                     outer_side = 1 - outer_side  # anticlockwise: the mirror image
@@ -433,6 +471,7 @@ def search_rule(  # type: ignore[no-untyped-def]
     if new_msgs and ci[C_HOLE_MEMORY] == 1:
         remember_heard(i, tick, ri, nb, held, ox, oy)
     held_i = held[i]
+    moving = motor[i] != STOP  # its command since the last tick
     d = cf[F_SPACING]
     steer_fresh = ci[C_TICKS_MOVE_FRESH]
     closing = cf[F_CLOSING]
@@ -472,6 +511,7 @@ def search_rule(  # type: ignore[no-untyped-def]
         reading = nb_dist[i, placed_slot]
         nearest = placed_est
         obstacle = min(queued_est, nearest_searcher)
+        follow_reference(i, ri, nb, placed_slot, moving)
         track_trend(i, ri, nb, nb_dist, placed_slot, R_REF_ID)
         ri[i, R_ON_SHAPE] = 1
         if ri[i, R_SHAPE_SINCE] == 0:
@@ -482,9 +522,11 @@ def search_rule(  # type: ignore[no-untyped-def]
             # instead of walking the repository (and meeting the robots coming along it).
             ri[i, R_ORBIT] = 1 - ri[i, R_ORBIT]
             ri[i, R_ON_SHAPE] = 0
+            ri[i, R_FROM_ID] = -1  # it turned round
         reading = nb_dist[i, queued_slot]
         nearest = queued_est
         obstacle = nearest_searcher
+        follow_reference(i, ri, nb, queued_slot, moving)
         track_trend(i, ri, nb, nb_dist, queued_slot, R_REF_ID)
     else:
         # Nothing stationary in earshot: circle clockwise to find the group again.
@@ -511,12 +553,13 @@ def search_rule(  # type: ignore[no-untyped-def]
         if tick - ri[i, R_SUB_SINCE] < ci[C_TICKS_SETTLE]:
             return
         ref = ri[i, R_REF_ID]
+        came = ri[i, R_FROM_ID]
         since = ri[i, R_SUB_SINCE]
         orbit = ri[i, R_ORBIT]
         wide_min = WIDE_MIN_NEIGHBOURS
         found, cx, cy, min_ts = find_site(
-            i, tick, since, True, ref, orbit, nb, nb_dist, gene_flag, ci, cf, widen, wide_min,
-            held_i, ox, oy,
+            i, tick, since, True, ref, came, orbit, nb, nb_dist, gene_flag, ci, cf, widen,
+            wide_min, held_i, ox, oy,
         )
         same = found and cx == ri[i, R_CAND_X] and cy == ri[i, R_CAND_Y]
         if not same and pocket:
@@ -556,6 +599,7 @@ def search_rule(  # type: ignore[no-untyped-def]
 
     if new_msgs and tick >= ri[i, R_COOLDOWN]:
         ref = ri[i, R_REF_ID]
+        came = ri[i, R_FROM_ID]
         orbit = ri[i, R_ORBIT]
         phase = (tick + i) % CREEP_PERIOD_TICKS
         creeping = ci[C_CREEP] == 1 and tick < ri[i, R_CREEP_UNTIL]
@@ -567,8 +611,8 @@ def search_rule(  # type: ignore[no-untyped-def]
             since = tick + 1  # moving: no capture
         wide_min = WIDE_MIN_NEIGHBOURS
         found, cx, cy, min_ts = find_site(
-            i, tick, since, False, ref, orbit, nb, nb_dist, gene_flag, ci, cf, widen, wide_min,
-            held_i, ox, oy,
+            i, tick, since, False, ref, came, orbit, nb, nb_dist, gene_flag, ci, cf, widen,
+            wide_min, held_i, ox, oy,
         )
         if not found and pocket:
             found, cx, cy, min_ts = pocket_site(
@@ -584,7 +628,7 @@ def search_rule(  # type: ignore[no-untyped-def]
         if ci[C_CREEP] == 1:
             recent = tick - steer_fresh
             near, _, _, _ = find_site(
-                i, tick, recent, False, ref, orbit, nb, nb_dist, gene_flag, ci, cf,
+                i, tick, recent, False, ref, came, orbit, nb, nb_dist, gene_flag, ci, cf,
                 CREEP_TOL_SCALE, 0, held_i, ox, oy,
             )
             if near:
