@@ -34,7 +34,7 @@ def test_bad_et_options_are_one_line_errors(text: str, message: str) -> None:
 
 
 def test_signed_and_bounded_fields() -> None:
-    ci, cf = ETParams(pair_aim_mm=-2.0, follow_offset_mm=-1.0, widen_max=1.0).pack(31, 0, 0)
+    _ci, cf = ETParams(pair_aim_mm=-2.0, follow_offset_mm=-1.0, widen_max=1.0).pack(31, 0, 0)
     assert cf[F_PAIR_AIM] == -2.0 and cf[F_WIDEN_MAX] == 1.0
     with pytest.raises(EtswarmError, match="widen_max must be >= 1"):
         ETParams(widen_max=0.5)
