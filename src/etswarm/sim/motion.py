@@ -24,6 +24,11 @@ from etswarm.sim.neighbours import (
     G_CELL,
     G_DRIFT,
     G_MARGIN,
+    P_BUDGET,
+    P_X,
+    P_Y,
+    R_BX,
+    R_BY,
     S_DRIFTED,
     drifted,
     rebuild_keeping_list,
@@ -62,9 +67,7 @@ def move_phase(cfg, grid, pos, heading, motor, alive, present, speed, turn_rate,
     sin_leg = np.sin(leg)
     walls = cfg.arena > 0.0
     two_pi = 2.0 * np.pi
-    sx, sy, slot, sbx, sby = grid.sx, grid.sy, grid.slot, grid.sbx, grid.sby
-    budget = grid.budget
-    ref_x, ref_y = grid.ref_x, grid.ref_y
+    sxb, slot, sref = grid.sxb, grid.slot, grid.sref
     span = grid.geom[G_CELL] + 2.0 * grid.geom[G_MARGIN]
     drift2 = grid.geom[G_DRIFT] * grid.geom[G_DRIFT]
     stale = False
@@ -73,14 +76,9 @@ def move_phase(cfg, grid, pos, heading, motor, alive, present, speed, turn_rate,
     for i in range(n):
         if i + PREFETCH_AHEAD < n:
             ahead = slot[i + PREFETCH_AHEAD]
-            prefetch(sx, ahead)
-            prefetch(sy, ahead)
-            prefetch(sbx, ahead)
-            prefetch(sby, ahead)
-            prefetch(budget, ahead)
+            prefetch(sxb, ahead)
+            prefetch(sref, ahead)
             prefetch(dirty_flag, ahead)
-            prefetch(ref_x, ahead)
-            prefetch(ref_y, ahead)
         m = motor[i]
         if m == 0 or not alive[i] or not present[i]:
             continue
@@ -143,15 +141,15 @@ def move_phase(cfg, grid, pos, heading, motor, alive, present, speed, turn_rate,
         trig[i, 1] = ch
         trig[i, 2] = sh
         s = slot[i]
-        sx[s] = x
-        sy[s] = y
-        bx = sbx[s]
-        by = sby[s]
+        sxb[s, P_X] = x
+        sxb[s, P_Y] = y
+        bx = sref[s, R_BX]
+        by = sref[s, R_BY]
         if x < bx or x >= bx + span or y < by or y >= by + span:
             stale = True
-        drift |= drifted(ref_x, ref_y, s, x, y, drift2)
-        b = budget[s] - travel
-        budget[s] = b
+        drift |= drifted(sref, s, x, y, drift2)
+        b = sxb[s, P_BUDGET] - travel
+        sxb[s, P_BUDGET] = b
         if b <= 0.0 and dirty_flag[s] == 0:
             dirty_flag[s] = 1
             dirty[n_dirty] = s

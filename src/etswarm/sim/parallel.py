@@ -60,7 +60,7 @@ from typing import NamedTuple
 import numpy as np
 from numba import njit
 
-from etswarm.sim.collide import gather_overlaps, list_overlaps
+from etswarm.sim.collide import gather_overlaps, push_apart
 from etswarm.sim.motion import PREFETCH_AHEAD, clamp_to_arena
 from etswarm.sim.neighbours import (
     G_CELL,
@@ -69,6 +69,11 @@ from etswarm.sim.neighbours import (
     G_MARGIN,
     G_OX,
     G_OY,
+    P_BUDGET,
+    P_X,
+    P_Y,
+    R_BX,
+    R_BY,
     S_DRIFTED,
     S_EPOCH,
     cell_range,
@@ -245,7 +250,7 @@ def grid_sync_flags(grid, pos, present, flags, robot_flag):
     for i in range(n):
         s = grid.slot[i]
         if present[i]:
-            if s >= 0 and pos[i, 0] == grid.sx[s] and pos[i, 1] == grid.sy[s]:
+            if s >= 0 and pos[i, 0] == grid.sxb[s, P_X] and pos[i, 1] == grid.sxb[s, P_Y]:
                 continue
             changed = True
             edited[i] = True
@@ -256,7 +261,7 @@ def grid_sync_flags(grid, pos, present, flags, robot_flag):
         for i in range(n):
             if edited[i]:
                 s = grid.slot[i]
-                grid.budget[s] = 0.0
+                grid.sxb[s, P_BUDGET] = 0.0
                 flags[s] |= 1
 
 
@@ -269,7 +274,7 @@ def _list_receivers(i, row_out, x, y, tick, key, cfg, grid, alive, rx_j, rx_d, r
     """Receivers of sender i at (x, y) (slot order) into rx_j[row_out], rx_d[row_out];
     returns (listed, lost), listed = -1 when more than ``row_cap`` would be listed.
     ``cand_s`` (N,) int32 and ``cand_d2`` (N,) float64: scratch for the slots in range."""
-    start, sx, sy, sidx = grid.start, grid.sx, grid.sy, grid.sidx
+    start, sxb, sidx = grid.start, grid.sxb, grid.sidx
     rng_r = cfg.comm_range
     r2 = rng_r * rng_r
     reach = rng_r + grid.geom[G_MARGIN]
@@ -283,8 +288,8 @@ def _list_receivers(i, row_out, x, y, tick, key, cfg, grid, alive, rx_j, rx_d, r
     for cy in range(cy0, cy1 + 1):
         row = cy * nx
         for s in range(start[row + cx0], start[row + cx1 + 1]):
-            dx = sx[s] - x
-            dy = sy[s] - y
+            dx = sxb[s, P_X] - x
+            dy = sxb[s, P_Y] - y
             d2 = dx * dx + dy * dy
             cand_s[n_in] = s
             cand_d2[n_in] = d2
@@ -542,9 +547,7 @@ def _move_part(lo, hi, tick, cfg, grid, pos, heading, motor, alive, present, spe
     sin_leg = np.sin(leg)
     walls = cfg.arena > 0.0
     two_pi = 2.0 * np.pi
-    sx, sy, slot, sbx, sby = grid.sx, grid.sy, grid.slot, grid.sbx, grid.sby
-    budget = grid.budget
-    ref_x, ref_y = grid.ref_x, grid.ref_y
+    sxb, slot, sref = grid.sxb, grid.slot, grid.sref
     span = grid.geom[G_CELL] + 2.0 * grid.geom[G_MARGIN]
     drift2 = grid.geom[G_DRIFT] * grid.geom[G_DRIFT]
     stale = False
@@ -552,14 +555,9 @@ def _move_part(lo, hi, tick, cfg, grid, pos, heading, motor, alive, present, spe
     for i in range(lo, hi):
         if i + PREFETCH_AHEAD < hi:
             ahead = slot[i + PREFETCH_AHEAD]
-            prefetch(sx, ahead)
-            prefetch(sy, ahead)
-            prefetch(sbx, ahead)
-            prefetch(sby, ahead)
-            prefetch(budget, ahead)
+            prefetch(sxb, ahead)
+            prefetch(sref, ahead)
             prefetch(flags, ahead)
-            prefetch(ref_x, ahead)
-            prefetch(ref_y, ahead)
         m = motor[i]
         if m == 0 or not alive[i] or not present[i]:
             continue
@@ -621,15 +619,15 @@ def _move_part(lo, hi, tick, cfg, grid, pos, heading, motor, alive, present, spe
         trig[i, 1] = ch
         trig[i, 2] = sh
         s = slot[i]
-        sx[s] = x
-        sy[s] = y
-        bx = sbx[s]
-        by = sby[s]
+        sxb[s, P_X] = x
+        sxb[s, P_Y] = y
+        bx = sref[s, R_BX]
+        by = sref[s, R_BY]
         if x < bx or x >= bx + span or y < by or y >= by + span:
             stale = True
-        drift |= drifted(ref_x, ref_y, s, x, y, drift2)
-        b = budget[s] - travel
-        budget[s] = b
+        drift |= drifted(sref, s, x, y, drift2)
+        b = sxb[s, P_BUDGET] - travel
+        sxb[s, P_BUDGET] = b
         if b <= 0.0:
             flags[s] |= 1
     out[at] = 1 if stale else 0
@@ -716,14 +714,13 @@ def _collide_strip(lo, hi, cur_bit, nxt_bit, lists_ok, cfg, grid, pos, motor, fl
     resolve2 = (contact - cfg.slop) * (contact - cfg.slop)
     walls = cfg.arena > 0.0
     arena = cfg.arena
-    start, sx, sy, sidx, sbx, sby = grid.start, grid.sx, grid.sy, grid.sidx, grid.sbx, grid.sby
+    start, sxb, sidx, sref = grid.start, grid.sxb, grid.sidx, grid.sref
     margin = grid.geom[G_MARGIN]
     reach = contact + 2.0 * margin
     near2 = (contact + margin) * (contact + margin)
     half_margin = 0.5 * margin
     contact2 = contact * contact
     share_k = 0.5 / (2.0 * contact + margin)
-    budget = grid.budget
     span = grid.geom[G_CELL] + 2.0 * grid.geom[G_MARGIN]
     inv = grid.geom[G_INV]
     ox = grid.geom[G_OX]
@@ -734,7 +731,6 @@ def _collide_strip(lo, hi, cur_bit, nxt_bit, lists_ok, cfg, grid, pos, motor, fl
     drift2 = grid.geom[G_DRIFT] * grid.geom[G_DRIFT]
     epoch = grid.state[S_EPOCH]
     near_slots, near_n, near_epoch = grid.near_slots, grid.near_n, grid.near_epoch
-    ref_x, ref_y = grid.ref_x, grid.ref_y
     list_r2, list_reach_mm = list_reach(grid, near_r)
     drift = False
     examined = 0
@@ -750,9 +746,11 @@ def _collide_strip(lo, hi, cur_bit, nxt_bit, lists_ok, cfg, grid, pos, motor, fl
     for w in range(n_work):
         a = work[w]
         f = flags[a] & ~cur_bit
-        xi = sx[a]
-        yi = sy[a]
-        if xi < sbx[a] or xi >= sbx[a] + span or yi < sby[a] or yi >= sby[a] + span:
+        xi = sxb[a, P_X]
+        yi = sxb[a, P_Y]
+        abx = sref[a, R_BX]
+        aby = sref[a, R_BY]
+        if xi < abx or xi >= abx + span or yi < aby or yi >= aby + span:
             # pushed out of its slack box earlier in this pass: its query could reach
             # beyond the rows next to its own; examine it after the rebuild
             stale = True
@@ -767,74 +765,99 @@ def _collide_strip(lo, hi, cur_bit, nxt_bit, lists_ok, cfg, grid, pos, motor, fl
         n_list = -1
         if lists_ok and not drift:
             if near_epoch[a] != epoch:
-                row_a = np.int64((sby[a] + margin - oy) * inv + 0.5)
-                near_n[a] = contact_list_from(start, sx, sy, near_slots, a, xi, yi, list_r2,
+                row_a = np.int64((sref[a, R_BY] + margin - oy) * inv + 0.5)
+                near_n[a] = contact_list_from(start, sxb, near_slots, a, xi, yi, list_r2,
                                               list_reach_mm, ox, oy, inv, nx, ny,
                                               row_a - 1, row_a + 1, near)
                 near_epoch[a] = epoch
             n_list = near_n[a]
+        still_a = motor[sidx[a]] == 0
         if n_list >= 0:
-            n_over, own = list_overlaps(near_slots, a, n_list, xi, yi, own, near2, contact2,
-                                        share_k, resolve2, half_margin, sx, sy, budget, near)
+            # the listed slots in one loop, as in etswarm.sim.collide.collide_phase:
+            # budgets and the pairs to push from the position at the examination's start
+            x0 = xi
+            y0 = yi
+            for q in range(n_list):
+                s = np.uint32(near_slots[a, q])
+                xs = sxb[s, P_X]
+                ys = sxb[s, P_Y]
+                dx = xs - x0
+                dy = ys - y0
+                d2 = dx * dx + dy * dy
+                within = np.float64(d2 < near2)
+                share = (within * max((d2 - contact2) * share_k, 0.0)
+                         + (1.0 - within) * half_margin)
+                own = min(own, share)
+                sxb[s, P_BUDGET] = min(sxb[s, P_BUDGET], share)
+                if d2 >= resolve2:
+                    continue
+                dx = xs - xi
+                dy = ys - yi
+                d2 = dx * dx + dy * dy
+                if d2 >= resolve2:
+                    continue
+                j = sidx[s]
+                xi, yi, xj, yj = push_apart(a, s, dx, dy, d2, xi, yi, xs, ys, still_a,
+                                            motor[j] == 0, contact, still_share, r, walls,
+                                            arena)
+                sxb[s, P_X] = xj
+                sxb[s, P_Y] = yj
+                sxb[s, P_BUDGET] = 0.0
+                pos[j, 0] = xj
+                pos[j, 1] = yj
+                drift |= drifted(sref, s, xj, yj, drift2)
+                bx = sref[s, R_BX]
+                by = sref[s, R_BY]
+                if xj < bx or xj >= bx + span or yj < by or yj >= by + span:
+                    stale = True
+                fs = flags[s]
+                n_next += (fs & nxt_bit) == 0
+                flags[s] = fs | nxt_bit
+                moved_i = True
+                pushes += 1
         else:
             n_over, own = gather_overlaps(a, xi, yi, own, reach, near2, contact2, share_k,
-                                          resolve2, ox, oy, inv, nx, ny, start, sx, sy,
-                                          budget, near, near_d2)
-        for q in range(n_over):
-            s = near[q]
-            dx = sx[s] - xi
-            dy = sy[s] - yi
-            d2 = dx * dx + dy * dy
-            if d2 >= resolve2:
-                continue
-            d = np.sqrt(d2)
-            if d > 1e-9:
-                ux = dx / d
-                uy = dy / d
-            else:
-                ang = 2.399963229728653 * ((a + 1) * (s + 1) % 1024)
-                ux = np.cos(ang)
-                uy = np.sin(ang)
-            j = sidx[s]
-            share_j = 0.5
-            if (motor[sidx[a]] == 0) != (motor[j] == 0):
-                share_j = still_share if motor[j] == 0 else 1.0 - still_share
-            depth = contact - d
-            xi -= (1.0 - share_j) * depth * ux
-            yi -= (1.0 - share_j) * depth * uy
-            xj = sx[s] + share_j * depth * ux
-            yj = sy[s] + share_j * depth * uy
-            if walls:
-                xi = clamp_to_arena(xi, r, arena)
-                yi = clamp_to_arena(yi, r, arena)
-                xj = clamp_to_arena(xj, r, arena)
-                yj = clamp_to_arena(yj, r, arena)
-            sx[s] = xj
-            sy[s] = yj
-            pos[j, 0] = xj
-            pos[j, 1] = yj
-            budget[s] = 0.0
-            drift |= drifted(ref_x, ref_y, s, xj, yj, drift2)
-            bx = sbx[s]
-            by = sby[s]
-            if xj < bx or xj >= bx + span or yj < by or yj >= by + span:
-                stale = True
-            fs = flags[s]
-            n_next += (fs & nxt_bit) == 0
-            flags[s] = fs | nxt_bit
-            moved_i = True
-            pushes += 1
+                                          resolve2, ox, oy, inv, nx, ny, start, sxb,
+                                          near, near_d2)
+            for q in range(n_over):
+                s = near[q]
+                xs = sxb[s, P_X]
+                ys = sxb[s, P_Y]
+                dx = xs - xi
+                dy = ys - yi
+                d2 = dx * dx + dy * dy
+                if d2 >= resolve2:
+                    continue
+                j = sidx[s]
+                xi, yi, xj, yj = push_apart(a, s, dx, dy, d2, xi, yi, xs, ys, still_a,
+                                            motor[j] == 0, contact, still_share, r, walls,
+                                            arena)
+                sxb[s, P_X] = xj
+                sxb[s, P_Y] = yj
+                sxb[s, P_BUDGET] = 0.0
+                pos[j, 0] = xj
+                pos[j, 1] = yj
+                drift |= drifted(sref, s, xj, yj, drift2)
+                bx = sref[s, R_BX]
+                by = sref[s, R_BY]
+                if xj < bx or xj >= bx + span or yj < by or yj >= by + span:
+                    stale = True
+                fs = flags[s]
+                n_next += (fs & nxt_bit) == 0
+                flags[s] = fs | nxt_bit
+                moved_i = True
+                pushes += 1
         if not moved_i:
-            budget[a] = own
+            sxb[a, P_BUDGET] = own
         else:
             i = sidx[a]
-            budget[a] = 0.0
-            sx[a] = xi
-            sy[a] = yi
+            sxb[a, P_BUDGET] = 0.0
+            sxb[a, P_X] = xi
+            sxb[a, P_Y] = yi
             pos[i, 0] = xi
             pos[i, 1] = yi
-            drift |= drifted(ref_x, ref_y, a, xi, yi, drift2)
-            if xi < sbx[a] or xi >= sbx[a] + span or yi < sby[a] or yi >= sby[a] + span:
+            drift |= drifted(sref, a, xi, yi, drift2)
+            if xi < abx or xi >= abx + span or yi < aby or yi >= aby + span:
                 stale = True
             fa = flags[a]
             n_next += (fa & nxt_bit) == 0
@@ -1014,7 +1037,7 @@ def prebuild_lists(p, cfg, grid, scr):
     near_r = 2.0 * cfg.radius + margin
     oy = grid.geom[G_OY]
     inv = grid.geom[G_INV]
-    sx, sy, sby, start, near_slots = grid.sx, grid.sy, grid.sby, grid.start, grid.near_slots
+    sxb, sref, start, near_slots = grid.sxb, grid.sref, grid.start, grid.near_slots
     near_n, near_epoch = grid.near_n, grid.near_epoch
     list_r2, list_reach_mm = list_reach(grid, near_r)
     ox = grid.geom[G_OX]
@@ -1028,8 +1051,8 @@ def prebuild_lists(p, cfg, grid, scr):
         for a in range(first, min(first + PREBUILD_CHUNK, n_filed)):
             if near_epoch[a] != epoch:
                 # the rows next to its own only, as in the collision strips
-                row_a = np.int64((sby[a] + margin - oy) * inv + 0.5)
-                near_n[a] = contact_list_from(start, sx, sy, near_slots, a, sx[a], sy[a],
+                row_a = np.int64((sref[a, R_BY] + margin - oy) * inv + 0.5)
+                near_n[a] = contact_list_from(start, sxb, near_slots, a, sxb[a, P_X], sxb[a, P_Y],
                                               list_r2, list_reach_mm, ox, oy, inv, nx, ny,
                                               row_a - 1, row_a + 1, buf)
                 near_epoch[a] = epoch
