@@ -568,39 +568,40 @@ def _move_part(lo, hi, tick, cfg, grid, pos, heading, motor, alive, present, spe
             trig[i, 2] = np.sin(h)
         ch = trig[i, 1]
         sh = trig[i, 2]
-        if m == 1:
-            step = speed[i] * dt
-            if cfg.speed_noise > 0.0:
-                step *= 1.0 + cfg.speed_noise * hash_normal(key, tick, i, SALT_SPEED_A,
-                                                            SALT_SPEED_B)
-            x = pos[i, 0] + step * ch
-            y = pos[i, 1] + step * sh
-            h_new = h
-            travel = abs(step)
-        else:
-            rate = turn_rate[i]
-            if trig[i, 3] != rate:
-                trig[i, 3] = rate
-                trig[i, 4] = np.cos(rate * dt)
-                trig[i, 5] = np.sin(rate * dt)
-            cd = trig[i, 4]
-            sd = trig[i, 5]
-            dth = rate * dt
-            if m == 3:
-                sd = -sd
-                dth = -dth
-                sl = -sin_leg
-            else:
-                sl = sin_leg
-            ca = ch * cos_leg - sh * sl
-            sa = sh * cos_leg + ch * sl
-            ca2 = ca * cd - sa * sd
-            sa2 = sa * cd + ca * sd
-            x = pos[i, 0] + r * (ca - ca2)
-            y = pos[i, 1] + r * (sa - sa2)
-            h_new = h + dth
-            travel = r * abs(dth)
-            ch, sh = ch * cd - sh * sd, sh * cd + ch * sd
+        # forward and turning are both computed and one is selected (which one is
+        # random per robot: a branch on it is mispredicted often); the values are the
+        # same as if only the chosen one were computed
+        fwd = m == 1
+        step = speed[i] * dt
+        if fwd and cfg.speed_noise > 0.0:
+            step *= 1.0 + cfg.speed_noise * hash_normal(key, tick, i, SALT_SPEED_A,
+                                                        SALT_SPEED_B)
+        rate = turn_rate[i]
+        if trig[i, 3] != rate:
+            trig[i, 3] = rate
+            trig[i, 4] = np.cos(rate * dt)
+            trig[i, 5] = np.sin(rate * dt)
+        cw = m == 3  # clockwise about the right leg, else counter-clockwise about the left
+        cd = trig[i, 4]
+        sd = -trig[i, 5] if cw else trig[i, 5]
+        dth = -(rate * dt) if cw else rate * dt
+        sl = -sin_leg if cw else sin_leg
+        # leg direction a = heading +- leg_angle; the centre rotates by dth about
+        # the leg at pos + r*(cos a, sin a): new centre = leg - r*(cos(a+dth), ...)
+        ca = ch * cos_leg - sh * sl
+        sa = sh * cos_leg + ch * sl
+        ca2 = ca * cd - sa * sd
+        sa2 = sa * cd + ca * sd
+        px = pos[i, 0]
+        py = pos[i, 1]
+        x = px + step * ch if fwd else px + r * (ca - ca2)
+        y = py + step * sh if fwd else py + r * (sa - sa2)
+        h_new = h if fwd else h + dth
+        travel = abs(step) if fwd else r * abs(dth)  # turning: arc length >= chord
+        ch_t = ch * cd - sh * sd
+        sh_t = sh * cd + ch * sd
+        ch = ch if fwd else ch_t
+        sh = sh if fwd else sh_t
         if cfg.heading_noise > 0.0:
             h_new += cfg.heading_noise * hash_normal(key, tick, i, SALT_HEAD_A, SALT_HEAD_B)
             ch = np.cos(h_new)

@@ -52,7 +52,7 @@ from etswarm.sim.radio import radio_phase
 from etswarm.sim.world import World
 
 #: Contact-list drift (mm): see etswarm.sim.neighbours.
-DRIFT_MM = 1.0
+DRIFT_MM = 2.0
 
 
 @dataclass
