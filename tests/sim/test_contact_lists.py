@@ -17,6 +17,8 @@ import pytest
 import etswarm.sim.simulator as simulator_module
 from etswarm.sim import RandomWalk, SimParams, Simulator, random_world
 from etswarm.sim.neighbours import (
+    L_COUNT,
+    L_FIRST,
     LIST_CAP,
     S_EPOCH,
     build_contact_list,
@@ -67,4 +69,5 @@ def test_contact_list_holds_every_robot_within_its_radius_in_slot_order() -> Non
         if len(want) > LIST_CAP:
             assert count == -1
         else:
-            assert list(grid.near_slots[a, :count]) == want
+            assert list(grid.near_slots[a, L_FIRST:L_FIRST + count]) == want
+            assert grid.near_slots[a, L_COUNT] == count

@@ -36,6 +36,9 @@ from etswarm.sim.neighbours import (
     G_MARGIN,
     G_OX,
     G_OY,
+    L_COUNT,
+    L_EPOCH,
+    L_FIRST,
     P_BUDGET,
     P_X,
     P_Y,
@@ -94,7 +97,7 @@ def collide_phase(cfg, grid, pos, present, motor, dirty, dirty_flag, n_dirty, sp
     stale = False
     near_r = contact + margin
     drift2 = grid.geom[G_DRIFT] * grid.geom[G_DRIFT]
-    near_slots, near_n, near_epoch = grid.near_slots, grid.near_n, grid.near_epoch
+    near_slots = grid.near_slots
     list_r2, list_reach_mm = list_reach(grid, near_r)
     while n_cur > 0 and passes < cfg.max_passes:
         if stale:
@@ -105,6 +108,7 @@ def collide_phase(cfg, grid, pos, present, motor, dirty, dirty_flag, n_dirty, sp
         # contact lists may be used and built while nobody drifted (see neighbours)
         lists_ok = True
         epoch = grid.state[S_EPOCH]
+        epoch32 = np.int32(epoch)
         # grid geometry (changes only at a rebuild)
         span = grid.geom[G_CELL] + 2.0 * grid.geom[G_MARGIN]
         inv = grid.geom[G_INV]
@@ -134,12 +138,11 @@ def collide_phase(cfg, grid, pos, present, motor, dirty, dirty_flag, n_dirty, sp
             still_a = motor[sidx[a]] == 0
             n_list = -1
             if lists_ok:
-                if near_epoch[a] != epoch:
-                    near_n[a] = contact_list_from(start, sxb, near_slots, a, xi, yi,
-                                                  list_r2, list_reach_mm, ox, oy, inv, nx,
-                                                  ny, 0, ny - 1, near)
-                    near_epoch[a] = epoch
-                n_list = near_n[a]
+                if near_slots[a, L_EPOCH] != epoch32:
+                    contact_list_from(start, sxb, near_slots, a, xi, yi, list_r2,
+                                      list_reach_mm, ox, oy, inv, nx, ny, 0, ny - 1, epoch,
+                                      near)
+                n_list = near_slots[a, L_COUNT]
             if n_list >= 0:
                 # the listed slots (a superset of those within contact + margin, in slot
                 # order) in one loop: budgets and the choice of pairs to push from the
@@ -149,7 +152,7 @@ def collide_phase(cfg, grid, pos, present, motor, dirty, dirty_flag, n_dirty, sp
                 # exactly one of the two values (a branch here is mispredicted often)
                 x0 = xi
                 y0 = yi
-                for q in range(n_list):
+                for q in range(L_FIRST, L_FIRST + n_list):
                     s = np.uint32(near_slots[a, q])
                     xs = sxb[s, P_X]
                     ys = sxb[s, P_Y]

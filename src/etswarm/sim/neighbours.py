@@ -24,9 +24,10 @@ with copies of their positions; a row of neighbouring cells is one contiguous sl
 - ``dims``   (2,) int64: nx, ny
 - ``state``  (5,) int64: [stale flag, number of rebuilds, length of the collision work
   list carried over to the next tick, contact-list epoch, drifted flag]
-- ``near_slots`` (N, LIST_CAP) int32, ``near_n`` (N,) int32, ``near_epoch`` (N,) int64, by
-  slot: the robot's contact list (see below), its length (-1: too many candidates, use
-  the grid) and the epoch it was built in
+- ``near_slots`` (N, 16) int32, by slot: the robot's contact list (see below) in one
+  aligned 64-byte row (one cache line): column ``L_COUNT`` its length (-1: too many
+  candidates, use the grid), ``L_EPOCH`` the epoch it was built in (low 32 bits, -1:
+  never), then up to LIST_CAP slots from column ``L_FIRST`` on
 
 Contact lists. A collision examination needs the robots within 2 r + margin of the
 examined one; scanning its cells each time costs far more than the few robots found. So
@@ -72,8 +73,6 @@ class Grid(NamedTuple):
     dims: np.ndarray
     state: np.ndarray
     near_slots: np.ndarray
-    near_n: np.ndarray
-    near_epoch: np.ndarray
 
 
 #: indices into Grid.geom
@@ -84,18 +83,21 @@ S_STALE, S_REBUILDS, S_CARRIED, S_EPOCH, S_DRIFTED = 0, 1, 2, 3, 4
 P_X, P_Y, P_BUDGET = 0, 1, 2
 #: columns of Grid.sref: position at the start of the epoch, slack-box corner (mm)
 R_X, R_Y, R_BX, R_BY = 0, 1, 2, 3
+#: columns of Grid.near_slots: list length, epoch built in, first listed slot
+L_COUNT, L_EPOCH, L_FIRST = 0, 1, 2
 #: Robots a contact list holds; a robot with more candidates is examined through the grid.
-LIST_CAP = 16
+LIST_CAP = 14
 #: Added to the contact-list radius against rounding (mm).
 LIST_EPS = 0.01
 
 
-def aligned_rows(n_rows: int, width: int) -> np.ndarray:
-    """A zeroed (n_rows, width) float64 array whose data starts on a 64-byte boundary, so
-    that a row of 4 values (32 bytes) never straddles two cache lines."""
+def aligned_rows(n_rows: int, width: int, dtype: type = np.float64) -> np.ndarray:
+    """A zeroed (n_rows, width) array whose data starts on a 64-byte boundary, so that a
+    row of 32 or 64 bytes never straddles two cache lines."""
     count = n_rows * width
-    raw = np.zeros(count + 8)
-    skip = (-raw.ctypes.data % 64) // 8
+    item = np.dtype(dtype).itemsize
+    raw = np.zeros(count + 64 // item, dtype=dtype)
+    skip = (-raw.ctypes.data % 64) // item
     return raw[skip:skip + count].reshape(n_rows, width)
 
 
@@ -117,10 +119,15 @@ def make_grid(n_robots: int, cell_mm: float, margin_mm: float,
         geom=np.array([cell_mm, margin_mm, cell_mm, 1.0 / cell_mm, 0.0, 0.0, drift_mm]),
         dims=np.ones(2, dtype=np.int64),
         state=np.zeros(5, dtype=np.int64),
-        near_slots=np.zeros((n_robots, LIST_CAP), dtype=np.int32),
-        near_n=np.zeros(n_robots, dtype=np.int32),
-        near_epoch=np.full(n_robots, -1, dtype=np.int64),
+        near_slots=_empty_lists(n_robots),
     )
+
+
+def _empty_lists(n_robots: int) -> np.ndarray:
+    """Grid.near_slots with no list built: (N, L_FIRST + LIST_CAP) int32, aligned."""
+    lists = aligned_rows(n_robots, L_FIRST + LIST_CAP, np.int32)
+    lists[:, L_EPOCH] = -1
+    return lists
 
 
 @njit(cache=True, inline="always")
@@ -251,22 +258,23 @@ def list_reach(grid, near_r):
 def build_contact_list(grid, a, xi, yi, near_r, row_lo, row_hi, buf):
     """Write the contact list of slot ``a`` at (xi, yi): every other filed slot within
     ``near_r`` + 4 drift (+ LIST_EPS) mm, in slot order, scanning cell rows clipped to
-    ``row_lo`` .. ``row_hi``. Returns its length, or -1 if it holds more than LIST_CAP.
+    ``row_lo`` .. ``row_hi``, stamped with the grid's epoch. Returns its length, or -1 if
+    it holds more than LIST_CAP.
     ``buf`` (N,) uint32 scratch (the scan keeps slots without branching on distances).
     Hot loops call :func:`contact_list_from` with the grid's arrays instead."""
     list_r2, reach = list_reach(grid, near_r)
     return contact_list_from(grid.start, grid.sxb, grid.near_slots, a, xi, yi,
                              list_r2, reach, grid.geom[G_OX], grid.geom[G_OY],
                              grid.geom[G_INV], grid.dims[0], grid.dims[1], row_lo, row_hi,
-                             buf)
+                             grid.state[S_EPOCH], buf)
 
 
 @njit(cache=True)
 def contact_list_from(start, sxb, near_slots, a, xi, yi, list_r2, reach, ox, oy, inv,
-                      nx, ny, row_lo, row_hi, buf):
+                      nx, ny, row_lo, row_hi, epoch, buf):
     """:func:`build_contact_list` from the grid's arrays (``start``, ``sxb``,
     ``near_slots``) and geometry (origin ``ox``, ``oy``, 1/cell ``inv``, ``nx`` x ``ny``
-    cells; ``list_r2`` and ``reach`` from :func:`list_reach`)."""
+    cells; ``list_r2`` and ``reach`` from :func:`list_reach`), stamped ``epoch``."""
     cx0, cx1 = cell_range(xi, reach, ox, inv, nx)
     cy0, cy1 = cell_range(yi, reach, oy, inv, ny)
     cy0 = max(cy0, row_lo)
@@ -280,10 +288,13 @@ def contact_list_from(start, sxb, near_slots, a, xi, yi, list_r2, reach, ox, oy,
             dy = sxb[s, P_Y] - yi
             buf[count] = s
             count += (dx * dx + dy * dy < list_r2) & (s != ua)
+    near_slots[a, L_EPOCH] = np.int32(epoch)
     if count > LIST_CAP:
+        near_slots[a, L_COUNT] = -1
         return -1
     for q in range(count):
-        near_slots[a, q] = buf[q]
+        near_slots[a, L_FIRST + q] = buf[q]
+    near_slots[a, L_COUNT] = count
     return count
 
 

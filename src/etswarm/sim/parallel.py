@@ -69,6 +69,9 @@ from etswarm.sim.neighbours import (
     G_MARGIN,
     G_OX,
     G_OY,
+    L_COUNT,
+    L_EPOCH,
+    L_FIRST,
     P_BUDGET,
     P_X,
     P_Y,
@@ -731,7 +734,8 @@ def _collide_strip(lo, hi, cur_bit, nxt_bit, lists_ok, cfg, grid, pos, motor, fl
     near_r = contact + margin
     drift2 = grid.geom[G_DRIFT] * grid.geom[G_DRIFT]
     epoch = grid.state[S_EPOCH]
-    near_slots, near_n, near_epoch = grid.near_slots, grid.near_n, grid.near_epoch
+    near_slots = grid.near_slots
+    epoch32 = np.int32(epoch)
     list_r2, list_reach_mm = list_reach(grid, near_r)
     drift = False
     examined = 0
@@ -765,20 +769,18 @@ def _collide_strip(lo, hi, cur_bit, nxt_bit, lists_ok, cfg, grid, pos, motor, fl
         own = half_margin
         n_list = -1
         if lists_ok and not drift:
-            if near_epoch[a] != epoch:
+            if near_slots[a, L_EPOCH] != epoch32:
                 row_a = np.int64((sref[a, R_BY] + margin - oy) * inv + 0.5)
-                near_n[a] = contact_list_from(start, sxb, near_slots, a, xi, yi, list_r2,
-                                              list_reach_mm, ox, oy, inv, nx, ny,
-                                              row_a - 1, row_a + 1, near)
-                near_epoch[a] = epoch
-            n_list = near_n[a]
+                contact_list_from(start, sxb, near_slots, a, xi, yi, list_r2, list_reach_mm,
+                                  ox, oy, inv, nx, ny, row_a - 1, row_a + 1, epoch, near)
+            n_list = near_slots[a, L_COUNT]
         still_a = motor[sidx[a]] == 0
         if n_list >= 0:
             # the listed slots in one loop, as in etswarm.sim.collide.collide_phase:
             # budgets and the pairs to push from the position at the examination's start
             x0 = xi
             y0 = yi
-            for q in range(n_list):
+            for q in range(L_FIRST, L_FIRST + n_list):
                 s = np.uint32(near_slots[a, q])
                 xs = sxb[s, P_X]
                 ys = sxb[s, P_Y]
@@ -1033,13 +1035,13 @@ def prebuild_lists(p, cfg, grid, scr):
     if grid.state[S_DRIFTED] != 0:
         return
     epoch = grid.state[S_EPOCH]
+    epoch32 = np.int32(epoch)
     n_filed = grid.start[grid.dims[0] * grid.dims[1]]
     margin = grid.geom[G_MARGIN]
     near_r = 2.0 * cfg.radius + margin
     oy = grid.geom[G_OY]
     inv = grid.geom[G_INV]
     sxb, sref, start, near_slots = grid.sxb, grid.sref, grid.start, grid.near_slots
-    near_n, near_epoch = grid.near_n, grid.near_epoch
     list_r2, list_reach_mm = list_reach(grid, near_r)
     ox = grid.geom[G_OX]
     nx = grid.dims[0]
@@ -1050,13 +1052,12 @@ def prebuild_lists(p, cfg, grid, scr):
         if first >= n_filed:
             return
         for a in range(first, min(first + PREBUILD_CHUNK, n_filed)):
-            if near_epoch[a] != epoch:
+            if near_slots[a, L_EPOCH] != epoch32:
                 # the rows next to its own only, as in the collision strips
                 row_a = np.int64((sref[a, R_BY] + margin - oy) * inv + 0.5)
-                near_n[a] = contact_list_from(start, sxb, near_slots, a, sxb[a, P_X], sxb[a, P_Y],
-                                              list_r2, list_reach_mm, ox, oy, inv, nx, ny,
-                                              row_a - 1, row_a + 1, buf)
-                near_epoch[a] = epoch
+                contact_list_from(start, sxb, near_slots, a, sxb[a, P_X], sxb[a, P_Y],
+                                  list_r2, list_reach_mm, ox, oy, inv, nx, ny, row_a - 1,
+                                  row_a + 1, epoch, buf)
 
 
 @njit(cache=True)
