@@ -277,15 +277,21 @@ def _list_receivers(i, row_out, x, y, tick, key, cfg, grid, alive, rx_j, rx_d, r
     """Receivers of sender i at (x, y) (slot order) into rx_j[row_out], rx_d[row_out];
     returns (listed, lost), listed = -1 when more than ``row_cap`` would be listed.
     ``cand_s`` (N,) int32 and ``cand_d2`` (N,) float64: scratch for the slots in range."""
-    start, sxb, sidx = grid.start, grid.sxb, grid.sidx
     rng_r = cfg.comm_range
-    r2 = rng_r * rng_r
-    reach = rng_r + grid.geom[G_MARGIN]
-    loss = cfg.loss
-    noise = cfg.dist_noise
-    nx = grid.dims[0]
-    cx0, cx1 = cell_range(x, reach, grid.geom[G_OX], grid.geom[G_INV], nx)
-    cy0, cy1 = cell_range(y, reach, grid.geom[G_OY], grid.geom[G_INV], grid.dims[1])
+    return _receivers_from(i, row_out, x, y, tick, key, grid.start, grid.sxb, grid.sidx,
+                           grid.geom[G_OX], grid.geom[G_OY], grid.geom[G_INV], grid.dims[0],
+                           grid.dims[1], rng_r + grid.geom[G_MARGIN], rng_r * rng_r,
+                           cfg.loss, cfg.dist_noise, alive, rx_j, rx_d, row_cap, cand_s,
+                           cand_d2)
+
+
+@njit(cache=True)
+def _receivers_from(i, row_out, x, y, tick, key, start, sxb, sidx, ox, oy, inv, nx, ny,
+                    reach, r2, loss, noise, alive, rx_j, rx_d, row_cap, cand_s, cand_d2):
+    """:func:`_list_receivers` from the grid's arrays and geometry (hot loops call this:
+    no field of a tuple is read per sender, see the numba note in docs/simulator.md)."""
+    cx0, cx1 = cell_range(x, reach, ox, inv, nx)
+    cy0, cy1 = cell_range(y, reach, oy, inv, ny)
     # the slots in range in slot order, kept without branching on distances
     n_in = 0
     for cy in range(cy0, cy1 + 1):
@@ -401,26 +407,43 @@ def _radio_list_part(lo, hi, tick, cfg, grid, pos, alive, present, tx_phase, out
     key = scr.key[0]
     n = pos.shape[0]
     parts = scr.parts[0]
+    # the grid's and the scratch's arrays in locals: a tuple field read in the loop
+    # would cost numba's reference counting an atomic increment and decrement
+    start, sxb, sidx = grid.start, grid.sxb, grid.sidx
+    ox = grid.geom[G_OX]
+    oy = grid.geom[G_OY]
+    inv = grid.geom[G_INV]
+    nx = grid.dims[0]
+    ny = grid.dims[1]
+    rng_r = cfg.comm_range
+    reach = rng_r + grid.geom[G_MARGIN]
+    r2 = rng_r * rng_r
+    loss = cfg.loss
+    noise = cfg.dist_noise
+    senders, tx_type, tx_data = scr.senders, scr.tx_type, scr.tx_data
+    rx_j, rx_d, rx_n, rx_cut = scr.rx_j, scr.rx_d, scr.rx_n, scr.rx_cut
+    work = scr.work[p]
+    near_d2 = scr.near_d2[p]
+    n_bytes = out_data.shape[1]
     m = lo
     lost = 0
     bad = 0
     for i in range(lo, hi):
         if not _is_sender(i, phase, tx_phase, out_on, alive, present):
             continue
-        scr.senders[m] = i
-        scr.tx_type[m] = out_type[i]
-        for b in range(out_data.shape[1]):
-            scr.tx_data[m, b] = out_data[i, b]
-        listed, n_lost = _list_receivers(i, m, pos[i, 0], pos[i, 1], tick, key, cfg, grid,
-                                         alive, scr.rx_j, scr.rx_d, RX_MAX, scr.work[p],
-                                         scr.near_d2[p])
+        senders[m] = i
+        tx_type[m] = out_type[i]
+        for b in range(n_bytes):
+            tx_data[m, b] = out_data[i, b]
+        listed, n_lost = _receivers_from(i, m, pos[i, 0], pos[i, 1], tick, key, start, sxb,
+                                         sidx, ox, oy, inv, nx, ny, reach, r2, loss, noise,
+                                         alive, rx_j, rx_d, RX_MAX, work, near_d2)
         lost += n_lost
         if listed < 0:
             bad = 1
             listed = 0
-        scr.rx_n[m] = listed
-        _split_by_part(m, listed, n, parts, scr.rx_j, scr.rx_d, scr.rx_cut, scr.work[p],
-                       scr.near_d2[p])
+        rx_n[m] = listed
+        _split_by_part(m, listed, n, parts, rx_j, rx_d, rx_cut, work, near_d2)
         m += 1
     scr.part_n[p, PN_SENT] = m - lo
     scr.part_n[p, PN_LOST] = lost
@@ -432,27 +455,28 @@ def _radio_file_part(lo, hi, n, parts, in_count, in_type, in_data, in_dist, scr,
     """Pass 2 for receivers lo..hi-1: file every listed copy in sender order (the
     messages as pass 1 copied them)."""
     cap = in_type.shape[1]
-    n_bytes = scr.tx_data.shape[1]
+    rx_cut, rx_j, rx_d = scr.rx_cut, scr.rx_j, scr.rx_d
+    tx_type, tx_data, part_n = scr.tx_type, scr.tx_data, scr.part_n
+    n_bytes = tx_data.shape[1]
     in_count[lo:hi] = 0
     delivered = 0
     overflow = 0
-    rx_cut = scr.rx_cut
     for q in range(parts):
         first = n * q // parts
-        last = first + scr.part_n[q, PN_SENT]
+        last = first + part_n[q, PN_SENT]
         for m in range(first, last):
-            mtype = scr.tx_type[m]
+            mtype = tx_type[m]
             if m + 1 < last:
                 # the next sender's receivers here: ask for their inbox rows (scattered)
                 for k in range(rx_cut[m + 1, p], rx_cut[m + 1, p + 1]):
-                    j = scr.rx_j[m + 1, k]
+                    j = rx_j[m + 1, k]
                     prefetch(in_count, j)
                     prefetch(in_type, j)
                     prefetch(in_data, j)
                     prefetch(in_dist, j)
             # this part's receivers of sender row m (pass 1 put them together)
             for k in range(rx_cut[m, p], rx_cut[m, p + 1]):
-                j = scr.rx_j[m, k]
+                j = rx_j[m, k]
                 c = in_count[j]
                 if c >= cap:
                     overflow += 1
@@ -460,15 +484,15 @@ def _radio_file_part(lo, hi, n, parts, in_count, in_type, in_data, in_dist, scr,
                 in_type[j, c] = mtype
                 if n_bytes == PAYLOAD_BYTES:  # a constant count: one unrolled copy
                     for b in range(PAYLOAD_BYTES):
-                        in_data[j, c, b] = scr.tx_data[m, b]
+                        in_data[j, c, b] = tx_data[m, b]
                 else:
                     for b in range(n_bytes):
-                        in_data[j, c, b] = scr.tx_data[m, b]
-                in_dist[j, c] = scr.rx_d[m, k]
+                        in_data[j, c, b] = tx_data[m, b]
+                in_dist[j, c] = rx_d[m, k]
                 in_count[j] = c + 1
                 delivered += 1
-    scr.part_n[p, PN_DELIVERED] = delivered
-    scr.part_n[p, PN_OVERFLOW] = overflow
+    part_n[p, PN_DELIVERED] = delivered
+    part_n[p, PN_OVERFLOW] = overflow
 
 
 @njit(cache=True)
