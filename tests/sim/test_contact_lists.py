@@ -17,6 +17,8 @@ import pytest
 import etswarm.sim.simulator as simulator_module
 from etswarm.sim import RandomWalk, SimParams, Simulator, random_world
 from etswarm.sim.neighbours import (
+    L_COUNT,
+    L_FIRST,
     LIST_CAP,
     S_EPOCH,
     build_contact_list,
@@ -59,11 +61,13 @@ def test_contact_list_holds_every_robot_within_its_radius_in_slot_order() -> Non
     list_r = 35.0 + 4.0 * 1.0
     buf = np.zeros(n, dtype=np.uint32)
     for a in range(0, n, 7):
-        count = build_contact_list(grid, a, grid.sx[a], grid.sy[a], 35.0, 0, grid.dims[1] - 1,
+        xy = grid.sxb[:, :2]
+        count = build_contact_list(grid, a, xy[a, 0], xy[a, 1], 35.0, 0, grid.dims[1] - 1,
                                    buf)
-        d = np.hypot(grid.sx[:n] - grid.sx[a], grid.sy[:n] - grid.sy[a])
+        d = np.hypot(xy[:n, 0] - xy[a, 0], xy[:n, 1] - xy[a, 1])
         want = [s for s in range(n) if s != a and d[s] < list_r]
         if len(want) > LIST_CAP:
             assert count == -1
         else:
-            assert list(grid.near_slots[a, :count]) == want
+            assert list(grid.near_slots[a, L_FIRST:L_FIRST + count]) == want
+            assert grid.near_slots[a, L_COUNT] == count

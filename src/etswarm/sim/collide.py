@@ -36,6 +36,14 @@ from etswarm.sim.neighbours import (
     G_MARGIN,
     G_OX,
     G_OY,
+    L_COUNT,
+    L_EPOCH,
+    L_FIRST,
+    P_BUDGET,
+    P_X,
+    P_Y,
+    R_BX,
+    R_BY,
     S_DRIFTED,
     S_EPOCH,
     cell_range,
@@ -54,10 +62,10 @@ def collide_phase(cfg, grid, pos, present, motor, dirty, dirty_flag, n_dirty, sp
     ``dirty_flag`` (N,) uint8 marks listed slots; ``spare`` is a second (N,) int32 work
     array. Works in slot order (robots that are near each other are near in memory) and
     writes every displacement to ``pos`` too; a long work list is processed in slot
-    order, so consecutive examinations touch the same cells. On return the work list is empty, all
-    flags are cleared and the grid is valid, unless ``max_passes`` ran out: then the
-    robots still to examine stay listed in ``dirty`` (and flagged) and their number is
-    returned (also kept in ``grid.state[2]``) to start the next tick's list.
+    order, so consecutive examinations touch the same cells. On return the work list is
+    empty, all flags are cleared and the grid is valid, unless ``max_passes`` ran out:
+    then the robots still to examine stay listed in ``dirty`` (and flagged) and their
+    number is returned (also kept in ``grid.state[2]``) to start the next tick's list.
     """
     r = cfg.radius
     still_share = cfg.still_share
@@ -65,7 +73,7 @@ def collide_phase(cfg, grid, pos, present, motor, dirty, dirty_flag, n_dirty, sp
     resolve2 = (contact - cfg.slop) * (contact - cfg.slop)
     walls = cfg.arena > 0.0
     arena = cfg.arena
-    start, sx, sy, sidx, sbx, sby = grid.start, grid.sx, grid.sy, grid.sidx, grid.sbx, grid.sby
+    start, sxb, sidx, sref = grid.start, grid.sxb, grid.sidx, grid.sref
     # robots filed up to `margin` away from their cell: a query of contact + 2 margin
     # finds every robot within contact + margin, the range that budgets depend on
     margin = grid.geom[G_MARGIN]
@@ -74,7 +82,6 @@ def collide_phase(cfg, grid, pos, present, motor, dirty, dirty_flag, n_dirty, sp
     half_margin = 0.5 * margin
     contact2 = contact * contact
     share_k = 0.5 / (2.0 * contact + margin)
-    budget = grid.budget
     n_slots = dirty_flag.shape[0]
     # slots near the robot being examined and their squared distances (mm^2); slots are
     # unsigned here and below so that indexing needs no negative-index wraparound
@@ -90,8 +97,7 @@ def collide_phase(cfg, grid, pos, present, motor, dirty, dirty_flag, n_dirty, sp
     stale = False
     near_r = contact + margin
     drift2 = grid.geom[G_DRIFT] * grid.geom[G_DRIFT]
-    near_slots, near_n, near_epoch = grid.near_slots, grid.near_n, grid.near_epoch
-    ref_x, ref_y = grid.ref_x, grid.ref_y
+    near_slots = grid.near_slots
     list_r2, list_reach_mm = list_reach(grid, near_r)
     while n_cur > 0 and passes < cfg.max_passes:
         if stale:
@@ -102,6 +108,7 @@ def collide_phase(cfg, grid, pos, present, motor, dirty, dirty_flag, n_dirty, sp
         # contact lists may be used and built while nobody drifted (see neighbours)
         lists_ok = True
         epoch = grid.state[S_EPOCH]
+        epoch32 = np.int32(epoch)
         # grid geometry (changes only at a rebuild)
         span = grid.geom[G_CELL] + 2.0 * grid.geom[G_MARGIN]
         inv = grid.geom[G_INV]
@@ -124,92 +131,117 @@ def collide_phase(cfg, grid, pos, present, motor, dirty, dirty_flag, n_dirty, sp
         examined += n_cur
         for k in range(n_cur):
             a = cur[k]
-            xi = sx[a]
-            yi = sy[a]
+            xi = sxb[a, P_X]
+            yi = sxb[a, P_Y]
             moved_i = False
             own = half_margin
+            still_a = motor[sidx[a]] == 0
             n_list = -1
             if lists_ok:
-                if near_epoch[a] != epoch:
-                    near_n[a] = contact_list_from(start, sx, sy, near_slots, a, xi, yi,
-                                                  list_r2, list_reach_mm, ox, oy, inv, nx,
-                                                  ny, 0, ny - 1, near)
-                    near_epoch[a] = epoch
-                n_list = near_n[a]
+                if near_slots[a, L_EPOCH] != epoch32:
+                    contact_list_from(start, sxb, near_slots, a, xi, yi, list_r2,
+                                      list_reach_mm, ox, oy, inv, nx, ny, 0, ny - 1, epoch,
+                                      near)
+                n_list = near_slots[a, L_COUNT]
             if n_list >= 0:
-                # the listed slots: the same overlaps and budgets as the cell query
-                n_over, own = list_overlaps(near_slots, a, n_list, xi, yi, own, near2,
-                                            contact2, share_k, resolve2, half_margin, sx, sy,
-                                            budget, near)
+                # the listed slots (a superset of those within contact + margin, in slot
+                # order) in one loop: budgets and the choice of pairs to push from the
+                # position at the start of the examination (x0, y0), as the cell query
+                # does; beyond contact + margin the share is half the margin, which
+                # changes no budget (none exceeds it), selected by arithmetic that gives
+                # exactly one of the two values (a branch here is mispredicted often)
+                x0 = xi
+                y0 = yi
+                for q in range(L_FIRST, L_FIRST + n_list):
+                    s = np.uint32(near_slots[a, q])
+                    xs = sxb[s, P_X]
+                    ys = sxb[s, P_Y]
+                    dx = xs - x0
+                    dy = ys - y0
+                    d2 = dx * dx + dy * dy
+                    within = np.float64(d2 < near2)
+                    share = (within * max((d2 - contact2) * share_k, 0.0)
+                             + (1.0 - within) * half_margin)
+                    own = min(own, share)
+                    sxb[s, P_BUDGET] = min(sxb[s, P_BUDGET], share)
+                    if d2 >= resolve2:
+                        continue
+                    # a pair to push, from where robot a stands now
+                    dx = xs - xi
+                    dy = ys - yi
+                    d2 = dx * dx + dy * dy
+                    if d2 >= resolve2:  # no longer overlapping after earlier pushes
+                        continue
+                    j = sidx[s]
+                    xi, yi, xj, yj = push_apart(a, s, dx, dy, d2, xi, yi, xs, ys, still_a,
+                                                motor[j] == 0, contact, still_share, r,
+                                                walls, arena)
+                    sxb[s, P_X] = xj
+                    sxb[s, P_Y] = yj
+                    sxb[s, P_BUDGET] = 0.0
+                    pos[j, 0] = xj
+                    pos[j, 1] = yj
+                    if drifted(sref, s, xj, yj, drift2):
+                        lists_ok = False
+                    bx = sref[s, R_BX]
+                    by = sref[s, R_BY]
+                    if xj < bx or xj >= bx + span or yj < by or yj >= by + span:
+                        stale = True
+                    # listed once: written always, kept if new (no branch to mispredict;
+                    # the bound check fails only when every slot is listed)
+                    if n_next < n_slots:
+                        nxt_list[n_next] = s
+                    n_next += dirty_flag[s] == 0
+                    dirty_flag[s] = 1
+                    moved_i = True
+                    pushes += 1
             else:
-                n_over, own = gather_overlaps(a, xi, yi, own, reach, near2, contact2, share_k,
-                                           resolve2, ox, oy, inv, nx, ny, start, sx, sy,
-                                           budget, near, near_d2)
-            # a query covers at most 2 rows (cell = query width); each row's cells are
-            # one run of slots, and both runs are walked as one loop (one loop exit to
-            # mispredict instead of two); the step of 2 keeps larger queries correct
-            for q in range(n_over):
-                s = near[q]
-                dx = sx[s] - xi
-                dy = sy[s] - yi
-                d2 = dx * dx + dy * dy
-                if d2 >= resolve2:  # no longer overlapping after earlier pushes
-                    continue
-                d = np.sqrt(d2)
-                if d > 1e-9:
-                    ux = dx / d
-                    uy = dy / d
-                else:  # coincident centres: a fixed direction per pair
-                    ang = 2.399963229728653 * ((a + 1) * (s + 1) % 1024)
-                    ux = np.cos(ang)
-                    uy = np.sin(ang)
-                # a robot standing on its legs slides less than a vibrating one
-                j = sidx[s]
-                share_j = 0.5
-                if (motor[sidx[a]] == 0) != (motor[j] == 0):
-                    share_j = still_share if motor[j] == 0 else 1.0 - still_share
-                depth = contact - d
-                xi -= (1.0 - share_j) * depth * ux
-                yi -= (1.0 - share_j) * depth * uy
-                xj = sx[s] + share_j * depth * ux
-                yj = sy[s] + share_j * depth * uy
-                if walls:
-                    xi = clamp_to_arena(xi, r, arena)
-                    yi = clamp_to_arena(yi, r, arena)
-                    xj = clamp_to_arena(xj, r, arena)
-                    yj = clamp_to_arena(yj, r, arena)
-                sx[s] = xj
-                sy[s] = yj
-                pos[j, 0] = xj
-                pos[j, 1] = yj
-                budget[s] = 0.0
-                if drifted(ref_x, ref_y, s, xj, yj, drift2):
-                    lists_ok = False
-                bx = sbx[s]
-                by = sby[s]
-                if xj < bx or xj >= bx + span or yj < by or yj >= by + span:
-                    stale = True
-                # listed once: written always, kept if new (no branch to mispredict;
-                # the bound check fails only when every slot is listed)
-                if n_next < n_slots:
-                    nxt_list[n_next] = s
-                n_next += dirty_flag[s] == 0
-                dirty_flag[s] = 1
-                moved_i = True
-                pushes += 1
+                n_over, own = gather_overlaps(a, xi, yi, own, reach, near2, contact2,
+                                              share_k, resolve2, ox, oy, inv, nx, ny, start,
+                                              sxb, near, near_d2)
+                for q in range(n_over):
+                    s = near[q]
+                    xs = sxb[s, P_X]
+                    ys = sxb[s, P_Y]
+                    dx = xs - xi
+                    dy = ys - yi
+                    d2 = dx * dx + dy * dy
+                    if d2 >= resolve2:  # no longer overlapping after earlier pushes
+                        continue
+                    j = sidx[s]
+                    xi, yi, xj, yj = push_apart(a, s, dx, dy, d2, xi, yi, xs, ys, still_a,
+                                                motor[j] == 0, contact, still_share, r,
+                                                walls, arena)
+                    sxb[s, P_X] = xj
+                    sxb[s, P_Y] = yj
+                    sxb[s, P_BUDGET] = 0.0
+                    pos[j, 0] = xj
+                    pos[j, 1] = yj
+                    if drifted(sref, s, xj, yj, drift2):
+                        lists_ok = False
+                    bx = sref[s, R_BX]
+                    by = sref[s, R_BY]
+                    if xj < bx or xj >= bx + span or yj < by or yj >= by + span:
+                        stale = True
+                    if n_next < n_slots:
+                        nxt_list[n_next] = s
+                    n_next += dirty_flag[s] == 0
+                    dirty_flag[s] = 1
+                    moved_i = True
+                    pushes += 1
             i = sidx[a]
             if not moved_i:
-                budget[a] = own
+                sxb[a, P_BUDGET] = own
             else:
-                budget[a] = 0.0
-                sx[a] = xi
-                sy[a] = yi
+                sxb[a, P_BUDGET] = 0.0
+                sxb[a, P_X] = xi
+                sxb[a, P_Y] = yi
                 pos[i, 0] = xi
                 pos[i, 1] = yi
-                if drifted(ref_x, ref_y, a, xi, yi, drift2):
+                if drifted(sref, a, xi, yi, drift2):
                     lists_ok = False
-                bx = sbx[a]
-                by = sby[a]
+                bx = sref[a, R_BX]
+                by = sref[a, R_BY]
                 if xi < bx or xi >= bx + span or yi < by or yi >= by + span:
                     stale = True
                 if n_next < n_slots:
@@ -240,8 +272,41 @@ def collide_phase(cfg, grid, pos, present, motor, dirty, dirty_flag, n_dirty, sp
 
 
 @njit(cache=True)
+def push_apart(a, s, dx, dy, d2, xi, yi, xs, ys, still_a, still_s, contact, still_share, r,
+               walls, arena):
+    """Push slots ``a`` at (xi, yi) and ``s`` at (xs, ys) apart along their centre line,
+    (dx, dy) = s - a, d2 its squared length (< contact^2), so that they stand ``contact``
+    apart: half each, or when exactly one of them is still (``still_a``, ``still_s``:
+    motors off) the still one takes ``still_share``; walls at 0 and ``arena`` if
+    ``walls``. Returns the new (xi, yi, xs, ys)."""
+    d = np.sqrt(d2)
+    if d > 1e-9:
+        ux = dx / d
+        uy = dy / d
+    else:  # coincident centres: a fixed direction per pair
+        ang = 2.399963229728653 * ((a + 1) * (s + 1) % 1024)
+        ux = np.cos(ang)
+        uy = np.sin(ang)
+    # a robot standing on its legs slides less than a vibrating one
+    share_j = 0.5
+    if still_a != still_s:
+        share_j = still_share if still_s else 1.0 - still_share
+    depth = contact - d
+    xi -= (1.0 - share_j) * depth * ux
+    yi -= (1.0 - share_j) * depth * uy
+    xj = xs + share_j * depth * ux
+    yj = ys + share_j * depth * uy
+    if walls:
+        xi = clamp_to_arena(xi, r, arena)
+        yi = clamp_to_arena(yi, r, arena)
+        xj = clamp_to_arena(xj, r, arena)
+        yj = clamp_to_arena(yj, r, arena)
+    return xi, yi, xj, yj
+
+
+@njit(cache=True)
 def gather_overlaps(a, xi, yi, own, reach, near2, contact2, share_k, resolve2, ox, oy, inv,
-                 nx, ny, start, sx, sy, budget, near, near_d2):
+                    nx, ny, start, sxb, near, near_d2):
     """The cell query of an examination: lower the budgets of the slots within
     contact + margin of slot ``a`` at (xi, yi) to their share of the gap, write the
     overlapping ones to ``near`` in slot order; returns (their number, own budget)."""
@@ -266,8 +331,8 @@ def gather_overlaps(a, xi, yi, own, reach, near2, contact2, share_k, resolve2, o
         gap = b1 - len0  # modulo 2^64: t + gap = b1 + (t - len0) for t >= len0
         for t in range(len0 + len1):
             s = t + (b0 if t < len0 else gap)
-            dx = sx[s] - xi
-            dy = sy[s] - yi
+            dx = sxb[s, P_X] - xi
+            dy = sxb[s, P_Y] - yi
             d2 = dx * dx + dy * dy
             near[n_near] = s
             near_d2[n_near] = d2
@@ -282,33 +347,7 @@ def gather_overlaps(a, xi, yi, own, reach, near2, contact2, share_k, resolve2, o
         # d - c = (d^2 - c^2) / (d + c) and d + c <= 2c + margin
         share = max((d2 - contact2) * share_k, 0.0)
         own = min(own, share)
-        budget[s] = min(budget[s], share)
-        near[n_over] = s
-        n_over += d2 < resolve2
-    return n_over, own
-
-
-@njit(cache=True)
-def list_overlaps(near_slots, a, n_list, xi, yi, own, near2, contact2, share_k, resolve2,
-                  half_margin, sx, sy, budget, near):
-    """:func:`gather_overlaps` from the contact list ``near_slots[a, :n_list]`` (slots in
-    slot order,
-    a superset of those within contact + margin): the same budgets, the same overlaps in
-    the same order. One loop; beyond contact + margin the share is half the margin, which
-    changes no budget (none exceeds it)."""
-    n_over = 0
-    for q in range(n_list):
-        s = np.uint32(near_slots[a, q])
-        dx = sx[s] - xi
-        dy = sy[s] - yi
-        d2 = dx * dx + dy * dy
-        # beyond contact + margin: half the margin, selected by arithmetic that gives
-        # exactly one of the two values (a branch here is mispredicted often)
-        within = np.float64(d2 < near2)
-        share = (within * max((d2 - contact2) * share_k, 0.0)
-                 + (1.0 - within) * half_margin)
-        own = min(own, share)
-        budget[s] = min(budget[s], share)
+        sxb[s, P_BUDGET] = min(sxb[s, P_BUDGET], share)
         near[n_over] = s
         n_over += d2 < resolve2
     return n_over, own

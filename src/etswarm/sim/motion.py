@@ -24,6 +24,11 @@ from etswarm.sim.neighbours import (
     G_CELL,
     G_DRIFT,
     G_MARGIN,
+    P_BUDGET,
+    P_X,
+    P_Y,
+    R_BX,
+    R_BY,
     S_DRIFTED,
     drifted,
     rebuild_keeping_list,
@@ -62,9 +67,7 @@ def move_phase(cfg, grid, pos, heading, motor, alive, present, speed, turn_rate,
     sin_leg = np.sin(leg)
     walls = cfg.arena > 0.0
     two_pi = 2.0 * np.pi
-    sx, sy, slot, sbx, sby = grid.sx, grid.sy, grid.slot, grid.sbx, grid.sby
-    budget = grid.budget
-    ref_x, ref_y = grid.ref_x, grid.ref_y
+    sxb, slot, sref = grid.sxb, grid.slot, grid.sref
     span = grid.geom[G_CELL] + 2.0 * grid.geom[G_MARGIN]
     drift2 = grid.geom[G_DRIFT] * grid.geom[G_DRIFT]
     stale = False
@@ -73,14 +76,9 @@ def move_phase(cfg, grid, pos, heading, motor, alive, present, speed, turn_rate,
     for i in range(n):
         if i + PREFETCH_AHEAD < n:
             ahead = slot[i + PREFETCH_AHEAD]
-            prefetch(sx, ahead)
-            prefetch(sy, ahead)
-            prefetch(sbx, ahead)
-            prefetch(sby, ahead)
-            prefetch(budget, ahead)
+            prefetch(sxb, ahead)
+            prefetch(sref, ahead)
             prefetch(dirty_flag, ahead)
-            prefetch(ref_x, ahead)
-            prefetch(ref_y, ahead)
         m = motor[i]
         if m == 0 or not alive[i] or not present[i]:
             continue
@@ -91,40 +89,39 @@ def move_phase(cfg, grid, pos, heading, motor, alive, present, speed, turn_rate,
             trig[i, 2] = np.sin(h)
         ch = trig[i, 1]
         sh = trig[i, 2]
-        if m == 1:
-            step = speed[i] * dt
-            if cfg.speed_noise > 0.0:
-                step *= 1.0 + cfg.speed_noise * rng.standard_normal()
-            x = pos[i, 0] + step * ch
-            y = pos[i, 1] + step * sh
-            h_new = h
-            travel = abs(step)
-        else:
-            rate = turn_rate[i]
-            if trig[i, 3] != rate:
-                trig[i, 3] = rate
-                trig[i, 4] = np.cos(rate * dt)
-                trig[i, 5] = np.sin(rate * dt)
-            cd = trig[i, 4]
-            sd = trig[i, 5]
-            dth = rate * dt
-            if m == 3:  # clockwise about the right leg
-                sd = -sd
-                dth = -dth
-                sl = -sin_leg
-            else:  # counter-clockwise about the left leg
-                sl = sin_leg
-            # leg direction a = heading +- leg_angle; the centre rotates by dth about
-            # the leg at pos + r*(cos a, sin a): new centre = leg - r*(cos(a+dth), ...)
-            ca = ch * cos_leg - sh * sl
-            sa = sh * cos_leg + ch * sl
-            ca2 = ca * cd - sa * sd
-            sa2 = sa * cd + ca * sd
-            x = pos[i, 0] + r * (ca - ca2)
-            y = pos[i, 1] + r * (sa - sa2)
-            h_new = h + dth
-            travel = r * abs(dth)  # arc length >= chord
-            ch, sh = ch * cd - sh * sd, sh * cd + ch * sd
+        # forward and turning are both computed and one is selected (which one is
+        # random per robot: a branch on it is mispredicted often); the values are the
+        # same as if only the chosen one were computed
+        fwd = m == 1
+        step = speed[i] * dt
+        if fwd and cfg.speed_noise > 0.0:
+            step *= 1.0 + cfg.speed_noise * rng.standard_normal()
+        rate = turn_rate[i]
+        if trig[i, 3] != rate:
+            trig[i, 3] = rate
+            trig[i, 4] = np.cos(rate * dt)
+            trig[i, 5] = np.sin(rate * dt)
+        cw = m == 3  # clockwise about the right leg, else counter-clockwise about the left
+        cd = trig[i, 4]
+        sd = -trig[i, 5] if cw else trig[i, 5]
+        dth = -(rate * dt) if cw else rate * dt
+        sl = -sin_leg if cw else sin_leg
+        # leg direction a = heading +- leg_angle; the centre rotates by dth about
+        # the leg at pos + r*(cos a, sin a): new centre = leg - r*(cos(a+dth), ...)
+        ca = ch * cos_leg - sh * sl
+        sa = sh * cos_leg + ch * sl
+        ca2 = ca * cd - sa * sd
+        sa2 = sa * cd + ca * sd
+        px = pos[i, 0]
+        py = pos[i, 1]
+        x = px + step * ch if fwd else px + r * (ca - ca2)
+        y = py + step * sh if fwd else py + r * (sa - sa2)
+        h_new = h if fwd else h + dth
+        travel = abs(step) if fwd else r * abs(dth)  # turning: arc length >= chord
+        ch_t = ch * cd - sh * sd
+        sh_t = sh * cd + ch * sd
+        ch = ch if fwd else ch_t
+        sh = sh if fwd else sh_t
         if cfg.heading_noise > 0.0:
             h_new += cfg.heading_noise * rng.standard_normal()
             ch = np.cos(h_new)
@@ -143,15 +140,15 @@ def move_phase(cfg, grid, pos, heading, motor, alive, present, speed, turn_rate,
         trig[i, 1] = ch
         trig[i, 2] = sh
         s = slot[i]
-        sx[s] = x
-        sy[s] = y
-        bx = sbx[s]
-        by = sby[s]
+        sxb[s, P_X] = x
+        sxb[s, P_Y] = y
+        bx = sref[s, R_BX]
+        by = sref[s, R_BY]
         if x < bx or x >= bx + span or y < by or y >= by + span:
             stale = True
-        drift |= drifted(ref_x, ref_y, s, x, y, drift2)
-        b = budget[s] - travel
-        budget[s] = b
+        drift |= drifted(sref, s, x, y, drift2)
+        b = sxb[s, P_BUDGET] - travel
+        sxb[s, P_BUDGET] = b
         if b <= 0.0 and dirty_flag[s] == 0:
             dirty_flag[s] = 1
             dirty[n_dirty] = s

@@ -8,30 +8,33 @@ function of the positions only) stores each cell's robots contiguously in "slot"
 with copies of their positions; a row of neighbouring cells is one contiguous slot range.
 
 - ``start``  (C+1,) int32: cell c = cy*nx + cx holds slots ``start[c] .. start[c+1]-1``
-- ``sx``, ``sy`` (N,) float64 mm: position of the robot in each slot (kept current)
+- ``sxb``    (N, 4) float64 mm, by slot: columns ``P_X``, ``P_Y`` the position of the
+  robot in the slot (kept current), ``P_BUDGET`` how far the robot may still travel
+  before the collision phase must examine it (see :mod:`etswarm.sim.collide`; carried
+  over to the new slots by a rebuild), column 3 unused. One row is what a collision
+  check of the slot reads and writes: 32 bytes, aligned, so one cache line.
 - ``sidx``   (N,) int32: robot in each slot
 - ``slot``   (N,) int32: slot of each robot, -1 if not filed (absent)
-- ``sbx``, ``sby`` (N,) float64 mm: lower corner of the filed cell minus the margin,
-  by slot (the robot's slack box is this corner plus cell + 2 margin)
-- ``budget`` (N,) float64 mm, by slot: how far the robot may still travel before the
-  collision phase must examine it (see :mod:`etswarm.sim.collide`); carried over to the
-  new slots by a rebuild
+- ``sref``   (N, 4) float64 mm, by slot: columns ``R_X``, ``R_Y`` the position at the
+  start of the contact-list epoch, ``R_BX``, ``R_BY`` the lower corner of the filed cell
+  minus the margin (the robot's slack box is this corner plus cell + 2 margin); what a
+  moved or pushed robot is checked against, in one aligned 32-byte row
 - ``geom``   (7,) float64: minimum cell, margin, cell, 1/cell, origin x, origin y,
   drift (mm)
 - ``dims``   (2,) int64: nx, ny
 - ``state``  (5,) int64: [stale flag, number of rebuilds, length of the collision work
   list carried over to the next tick, contact-list epoch, drifted flag]
-- ``ref_x``, ``ref_y`` (N,) float64 mm, by slot: position at the start of the epoch
-- ``near_slots`` (N, LIST_CAP) int32, ``near_n`` (N,) int32, ``near_epoch`` (N,) int64, by
-  slot: the robot's contact list (see below), its length (-1: too many candidates, use
-  the grid) and the epoch it was built in
+- ``near_slots`` (N, 16) int32, by slot: the robot's contact list (see below) in one
+  aligned 64-byte row (one cache line): column ``L_COUNT`` its length (-1: too many
+  candidates, use the grid), ``L_EPOCH`` the epoch it was built in (low 32 bits, -1:
+  never), then up to LIST_CAP slots from column ``L_FIRST`` on
 
 Contact lists. A collision examination needs the robots within 2 r + margin of the
 examined one; scanning its cells each time costs far more than the few robots found. So
 the first examination of a robot in an *epoch* lists, in slot order, every robot within
 2 r + margin + 4 drift (its contact list), and later examinations in the epoch only
 check the listed robots. An epoch lasts while every filed robot stays within ``drift``
-mm of where it stood when the epoch began (``ref_x``, ``ref_y``): then two robots closer
+mm of where it stood when the epoch began (``sref``): then two robots closer
 than 2 r + margin now were closer than 2 r + margin + 4 drift when either list was built,
 so a list holds every robot a query of the cells would find, in the same order. A phase
 that moves a robot further raises the drifted flag and stops using lists; the next
@@ -41,7 +44,7 @@ change). Lists are rebuilt lazily, so robots that are never examined cost nothin
 A filed robot may wander up to ``margin`` mm outside its filed cell before the list must
 be rebuilt (O(N + cells)); queries widen their box by the margin and clip it to the
 grid, so results stay exact. The
-phases keep ``sx``/``sy`` in step with ``pos`` and raise the stale flag when a robot
+phases keep ``sxb``'s positions in step with ``pos`` and raise the stale flag when a robot
 leaves its slack box; they rebuild before the next query. Robots that do not move cost
 nothing, and a candidate check reads contiguous memory. Outside edits of ``pos`` are
 detected by comparing ``pos`` with the slot copies (:func:`grid_sync`).
@@ -62,31 +65,40 @@ class Grid(NamedTuple):
     """The cell list (see the module docstring for every field's shape and meaning)."""
 
     start: np.ndarray
-    sx: np.ndarray
-    sy: np.ndarray
+    sxb: np.ndarray
     sidx: np.ndarray
     slot: np.ndarray
-    sbx: np.ndarray
-    sby: np.ndarray
-    budget: np.ndarray
+    sref: np.ndarray
     geom: np.ndarray
     dims: np.ndarray
     state: np.ndarray
-    ref_x: np.ndarray
-    ref_y: np.ndarray
     near_slots: np.ndarray
-    near_n: np.ndarray
-    near_epoch: np.ndarray
 
 
 #: indices into Grid.geom
 G_CELL_MIN, G_MARGIN, G_CELL, G_INV, G_OX, G_OY, G_DRIFT = 0, 1, 2, 3, 4, 5, 6
 #: indices into Grid.state
 S_STALE, S_REBUILDS, S_CARRIED, S_EPOCH, S_DRIFTED = 0, 1, 2, 3, 4
+#: columns of Grid.sxb: position (mm) and collision budget (mm)
+P_X, P_Y, P_BUDGET = 0, 1, 2
+#: columns of Grid.sref: position at the start of the epoch, slack-box corner (mm)
+R_X, R_Y, R_BX, R_BY = 0, 1, 2, 3
+#: columns of Grid.near_slots: list length, epoch built in, first listed slot
+L_COUNT, L_EPOCH, L_FIRST = 0, 1, 2
 #: Robots a contact list holds; a robot with more candidates is examined through the grid.
-LIST_CAP = 16
+LIST_CAP = 14
 #: Added to the contact-list radius against rounding (mm).
 LIST_EPS = 0.01
+
+
+def aligned_rows(n_rows: int, width: int, dtype: type = np.float64) -> np.ndarray:
+    """A zeroed (n_rows, width) array whose data starts on a 64-byte boundary, so that a
+    row of 32 or 64 bytes never straddles two cache lines."""
+    count = n_rows * width
+    item = np.dtype(dtype).itemsize
+    raw = np.zeros(count + 64 // item, dtype=dtype)
+    skip = (-raw.ctypes.data % 64) // item
+    return raw[skip:skip + count].reshape(n_rows, width)
 
 
 def make_grid(n_robots: int, cell_mm: float, margin_mm: float,
@@ -100,22 +112,22 @@ def make_grid(n_robots: int, cell_mm: float, margin_mm: float,
     capacity = max(4096, 8 * n_robots)
     return Grid(
         start=np.zeros(capacity + 1, dtype=np.int32),
-        sx=np.zeros(n_robots),
-        sy=np.zeros(n_robots),
+        sxb=aligned_rows(n_robots, 4),
         sidx=np.zeros(n_robots, dtype=np.int32),
         slot=np.full(n_robots, -1, dtype=np.int32),
-        sbx=np.zeros(n_robots),
-        sby=np.zeros(n_robots),
-        budget=np.zeros(n_robots),
+        sref=aligned_rows(n_robots, 4),
         geom=np.array([cell_mm, margin_mm, cell_mm, 1.0 / cell_mm, 0.0, 0.0, drift_mm]),
         dims=np.ones(2, dtype=np.int64),
         state=np.zeros(5, dtype=np.int64),
-        ref_x=np.zeros(n_robots),
-        ref_y=np.zeros(n_robots),
-        near_slots=np.zeros((n_robots, LIST_CAP), dtype=np.int32),
-        near_n=np.zeros(n_robots, dtype=np.int32),
-        near_epoch=np.full(n_robots, -1, dtype=np.int64),
+        near_slots=_empty_lists(n_robots),
     )
+
+
+def _empty_lists(n_robots: int) -> np.ndarray:
+    """Grid.near_slots with no list built: (N, L_FIRST + LIST_CAP) int32, aligned."""
+    lists = aligned_rows(n_robots, L_FIRST + LIST_CAP, np.int32)
+    lists[:, L_EPOCH] = -1
+    return lists
 
 
 @njit(cache=True, inline="always")
@@ -173,7 +185,7 @@ def grid_rebuild(grid, pos, present):
     for i in range(n):
         s = grid.slot[i]
         if s >= 0:
-            kept_budget[i] = grid.budget[s]
+            kept_budget[i] = grid.sxb[s, P_BUDGET]
     start[: n_cells + 1] = 0
     for i in range(n):
         if present[i]:
@@ -196,13 +208,13 @@ def grid_rebuild(grid, pos, present):
         fill[c] = k + 1
         grid.slot[i] = k
         grid.sidx[k] = i
-        grid.sx[k] = pos[i, 0]
-        grid.sy[k] = pos[i, 1]
-        grid.ref_x[k] = pos[i, 0]
-        grid.ref_y[k] = pos[i, 1]
-        grid.budget[k] = kept_budget[i]
-        grid.sbx[k] = minx + (c % nx) * cell - margin
-        grid.sby[k] = miny + (c // nx) * cell - margin
+        grid.sxb[k, P_X] = pos[i, 0]
+        grid.sxb[k, P_Y] = pos[i, 1]
+        grid.sxb[k, P_BUDGET] = kept_budget[i]
+        grid.sref[k, R_X] = pos[i, 0]
+        grid.sref[k, R_Y] = pos[i, 1]
+        grid.sref[k, R_BX] = minx + (c % nx) * cell - margin
+        grid.sref[k, R_BY] = miny + (c // nx) * cell - margin
     grid.state[S_STALE] = 0
     grid.state[S_REBUILDS] += 1
     grid.state[S_EPOCH] += 1  # slots changed: every contact list is void
@@ -213,20 +225,23 @@ def grid_rebuild(grid, pos, present):
 def new_epoch(grid):
     """Start a contact-list epoch: every list is void, robots drift from where they are."""
     n_filed = grid.start[grid.dims[0] * grid.dims[1]]
-    grid.ref_x[:n_filed] = grid.sx[:n_filed]
-    grid.ref_y[:n_filed] = grid.sy[:n_filed]
+    sxb = grid.sxb
+    sref = grid.sref
+    for s in range(n_filed):
+        sref[s, R_X] = sxb[s, P_X]
+        sref[s, R_Y] = sxb[s, P_Y]
     grid.state[S_EPOCH] += 1
     grid.state[S_DRIFTED] = 0
 
 
 @njit(cache=True)
-def drifted(ref_x, ref_y, s, x, y, drift2):
+def drifted(sref, s, x, y, drift2):
     """True when slot ``s`` at (x, y) is more than the drift (``drift2`` its square) away
-    from where it stood when the epoch began (``ref_x``, ``ref_y``: the grid's arrays;
-    hot loops pass arrays, not the grid, since every field read from the grid tuple
-    costs the numba runtime an atomic reference count up and down)."""
-    ex = x - ref_x[s]
-    ey = y - ref_y[s]
+    from where it stood when the epoch began (``sref``: the grid's array; hot loops pass
+    arrays, not the grid, since every field read from the grid tuple costs the numba
+    runtime an atomic reference count up and down)."""
+    ex = x - sref[s, R_X]
+    ey = y - sref[s, R_Y]
     return ex * ex + ey * ey > drift2
 
 
@@ -243,22 +258,23 @@ def list_reach(grid, near_r):
 def build_contact_list(grid, a, xi, yi, near_r, row_lo, row_hi, buf):
     """Write the contact list of slot ``a`` at (xi, yi): every other filed slot within
     ``near_r`` + 4 drift (+ LIST_EPS) mm, in slot order, scanning cell rows clipped to
-    ``row_lo`` .. ``row_hi``. Returns its length, or -1 if it holds more than LIST_CAP.
+    ``row_lo`` .. ``row_hi``, stamped with the grid's epoch. Returns its length, or -1 if
+    it holds more than LIST_CAP.
     ``buf`` (N,) uint32 scratch (the scan keeps slots without branching on distances).
     Hot loops call :func:`contact_list_from` with the grid's arrays instead."""
     list_r2, reach = list_reach(grid, near_r)
-    return contact_list_from(grid.start, grid.sx, grid.sy, grid.near_slots, a, xi, yi,
+    return contact_list_from(grid.start, grid.sxb, grid.near_slots, a, xi, yi,
                              list_r2, reach, grid.geom[G_OX], grid.geom[G_OY],
                              grid.geom[G_INV], grid.dims[0], grid.dims[1], row_lo, row_hi,
-                             buf)
+                             grid.state[S_EPOCH], buf)
 
 
 @njit(cache=True)
-def contact_list_from(start, sx, sy, near_slots, a, xi, yi, list_r2, reach, ox, oy, inv,
-                      nx, ny, row_lo, row_hi, buf):
-    """:func:`build_contact_list` from the grid's arrays (``start``, ``sx``, ``sy``,
+def contact_list_from(start, sxb, near_slots, a, xi, yi, list_r2, reach, ox, oy, inv,
+                      nx, ny, row_lo, row_hi, epoch, buf):
+    """:func:`build_contact_list` from the grid's arrays (``start``, ``sxb``,
     ``near_slots``) and geometry (origin ``ox``, ``oy``, 1/cell ``inv``, ``nx`` x ``ny``
-    cells; ``list_r2`` and ``reach`` from :func:`list_reach`)."""
+    cells; ``list_r2`` and ``reach`` from :func:`list_reach`), stamped ``epoch``."""
     cx0, cx1 = cell_range(xi, reach, ox, inv, nx)
     cy0, cy1 = cell_range(yi, reach, oy, inv, ny)
     cy0 = max(cy0, row_lo)
@@ -268,14 +284,17 @@ def contact_list_from(start, sx, sy, near_slots, a, xi, yi, list_r2, reach, ox, 
     for cy in range(cy0, cy1 + 1):
         row = cy * nx
         for s in range(np.uint64(start[row + cx0]), np.uint64(start[row + cx1 + 1])):
-            dx = sx[s] - xi
-            dy = sy[s] - yi
+            dx = sxb[s, P_X] - xi
+            dy = sxb[s, P_Y] - yi
             buf[count] = s
             count += (dx * dx + dy * dy < list_r2) & (s != ua)
+    near_slots[a, L_EPOCH] = np.int32(epoch)
     if count > LIST_CAP:
+        near_slots[a, L_COUNT] = -1
         return -1
     for q in range(count):
-        near_slots[a, q] = buf[q]
+        near_slots[a, L_FIRST + q] = buf[q]
+    near_slots[a, L_COUNT] = count
     return count
 
 
@@ -316,7 +335,7 @@ def grid_sync(grid, pos, present, dirty, dirty_flag, n_dirty):
     for i in range(n):
         s = grid.slot[i]
         if present[i]:
-            if s >= 0 and pos[i, 0] == grid.sx[s] and pos[i, 1] == grid.sy[s]:
+            if s >= 0 and pos[i, 0] == grid.sxb[s, P_X] and pos[i, 1] == grid.sxb[s, P_Y]:
                 continue
             changed = True
             edited[i] = True
@@ -327,7 +346,7 @@ def grid_sync(grid, pos, present, dirty, dirty_flag, n_dirty):
         for i in range(n):
             if edited[i]:
                 s = grid.slot[i]
-                grid.budget[s] = 0.0
+                grid.sxb[s, P_BUDGET] = 0.0
                 if dirty_flag[s] == 0:
                     dirty_flag[s] = 1
                     dirty[n_dirty] = s
@@ -358,8 +377,8 @@ def neighbours_within(grid, pos, i, radius, out):
             j = grid.sidx[k]
             if j == i:
                 continue
-            dx = grid.sx[k] - x
-            dy = grid.sy[k] - y
+            dx = grid.sxb[k, P_X] - x
+            dy = grid.sxb[k, P_Y] - y
             if dx * dx + dy * dy <= r2:
                 out[count] = j
                 count += 1

@@ -60,7 +60,7 @@ from typing import NamedTuple
 import numpy as np
 from numba import njit
 
-from etswarm.sim.collide import gather_overlaps, list_overlaps
+from etswarm.sim.collide import gather_overlaps, push_apart
 from etswarm.sim.motion import PREFETCH_AHEAD, clamp_to_arena
 from etswarm.sim.neighbours import (
     G_CELL,
@@ -69,6 +69,14 @@ from etswarm.sim.neighbours import (
     G_MARGIN,
     G_OX,
     G_OY,
+    L_COUNT,
+    L_EPOCH,
+    L_FIRST,
+    P_BUDGET,
+    P_X,
+    P_Y,
+    R_BX,
+    R_BY,
     S_DRIFTED,
     S_EPOCH,
     cell_range,
@@ -245,7 +253,7 @@ def grid_sync_flags(grid, pos, present, flags, robot_flag):
     for i in range(n):
         s = grid.slot[i]
         if present[i]:
-            if s >= 0 and pos[i, 0] == grid.sx[s] and pos[i, 1] == grid.sy[s]:
+            if s >= 0 and pos[i, 0] == grid.sxb[s, P_X] and pos[i, 1] == grid.sxb[s, P_Y]:
                 continue
             changed = True
             edited[i] = True
@@ -256,7 +264,7 @@ def grid_sync_flags(grid, pos, present, flags, robot_flag):
         for i in range(n):
             if edited[i]:
                 s = grid.slot[i]
-                grid.budget[s] = 0.0
+                grid.sxb[s, P_BUDGET] = 0.0
                 flags[s] |= 1
 
 
@@ -269,22 +277,28 @@ def _list_receivers(i, row_out, x, y, tick, key, cfg, grid, alive, rx_j, rx_d, r
     """Receivers of sender i at (x, y) (slot order) into rx_j[row_out], rx_d[row_out];
     returns (listed, lost), listed = -1 when more than ``row_cap`` would be listed.
     ``cand_s`` (N,) int32 and ``cand_d2`` (N,) float64: scratch for the slots in range."""
-    start, sx, sy, sidx = grid.start, grid.sx, grid.sy, grid.sidx
     rng_r = cfg.comm_range
-    r2 = rng_r * rng_r
-    reach = rng_r + grid.geom[G_MARGIN]
-    loss = cfg.loss
-    noise = cfg.dist_noise
-    nx = grid.dims[0]
-    cx0, cx1 = cell_range(x, reach, grid.geom[G_OX], grid.geom[G_INV], nx)
-    cy0, cy1 = cell_range(y, reach, grid.geom[G_OY], grid.geom[G_INV], grid.dims[1])
+    return _receivers_from(i, row_out, x, y, tick, key, grid.start, grid.sxb, grid.sidx,
+                           grid.geom[G_OX], grid.geom[G_OY], grid.geom[G_INV], grid.dims[0],
+                           grid.dims[1], rng_r + grid.geom[G_MARGIN], rng_r * rng_r,
+                           cfg.loss, cfg.dist_noise, alive, rx_j, rx_d, row_cap, cand_s,
+                           cand_d2)
+
+
+@njit(cache=True)
+def _receivers_from(i, row_out, x, y, tick, key, start, sxb, sidx, ox, oy, inv, nx, ny,
+                    reach, r2, loss, noise, alive, rx_j, rx_d, row_cap, cand_s, cand_d2):
+    """:func:`_list_receivers` from the grid's arrays and geometry (hot loops call this:
+    no field of a tuple is read per sender, see the numba note in docs/simulator.md)."""
+    cx0, cx1 = cell_range(x, reach, ox, inv, nx)
+    cy0, cy1 = cell_range(y, reach, oy, inv, ny)
     # the slots in range in slot order, kept without branching on distances
     n_in = 0
     for cy in range(cy0, cy1 + 1):
         row = cy * nx
         for s in range(start[row + cx0], start[row + cx1 + 1]):
-            dx = sx[s] - x
-            dy = sy[s] - y
+            dx = sxb[s, P_X] - x
+            dy = sxb[s, P_Y] - y
             d2 = dx * dx + dy * dy
             cand_s[n_in] = s
             cand_d2[n_in] = d2
@@ -393,26 +407,43 @@ def _radio_list_part(lo, hi, tick, cfg, grid, pos, alive, present, tx_phase, out
     key = scr.key[0]
     n = pos.shape[0]
     parts = scr.parts[0]
+    # the grid's and the scratch's arrays in locals: a tuple field read in the loop
+    # would cost numba's reference counting an atomic increment and decrement
+    start, sxb, sidx = grid.start, grid.sxb, grid.sidx
+    ox = grid.geom[G_OX]
+    oy = grid.geom[G_OY]
+    inv = grid.geom[G_INV]
+    nx = grid.dims[0]
+    ny = grid.dims[1]
+    rng_r = cfg.comm_range
+    reach = rng_r + grid.geom[G_MARGIN]
+    r2 = rng_r * rng_r
+    loss = cfg.loss
+    noise = cfg.dist_noise
+    senders, tx_type, tx_data = scr.senders, scr.tx_type, scr.tx_data
+    rx_j, rx_d, rx_n, rx_cut = scr.rx_j, scr.rx_d, scr.rx_n, scr.rx_cut
+    work = scr.work[p]
+    near_d2 = scr.near_d2[p]
+    n_bytes = out_data.shape[1]
     m = lo
     lost = 0
     bad = 0
     for i in range(lo, hi):
         if not _is_sender(i, phase, tx_phase, out_on, alive, present):
             continue
-        scr.senders[m] = i
-        scr.tx_type[m] = out_type[i]
-        for b in range(out_data.shape[1]):
-            scr.tx_data[m, b] = out_data[i, b]
-        listed, n_lost = _list_receivers(i, m, pos[i, 0], pos[i, 1], tick, key, cfg, grid,
-                                         alive, scr.rx_j, scr.rx_d, RX_MAX, scr.work[p],
-                                         scr.near_d2[p])
+        senders[m] = i
+        tx_type[m] = out_type[i]
+        for b in range(n_bytes):
+            tx_data[m, b] = out_data[i, b]
+        listed, n_lost = _receivers_from(i, m, pos[i, 0], pos[i, 1], tick, key, start, sxb,
+                                         sidx, ox, oy, inv, nx, ny, reach, r2, loss, noise,
+                                         alive, rx_j, rx_d, RX_MAX, work, near_d2)
         lost += n_lost
         if listed < 0:
             bad = 1
             listed = 0
-        scr.rx_n[m] = listed
-        _split_by_part(m, listed, n, parts, scr.rx_j, scr.rx_d, scr.rx_cut, scr.work[p],
-                       scr.near_d2[p])
+        rx_n[m] = listed
+        _split_by_part(m, listed, n, parts, rx_j, rx_d, rx_cut, work, near_d2)
         m += 1
     scr.part_n[p, PN_SENT] = m - lo
     scr.part_n[p, PN_LOST] = lost
@@ -424,27 +455,28 @@ def _radio_file_part(lo, hi, n, parts, in_count, in_type, in_data, in_dist, scr,
     """Pass 2 for receivers lo..hi-1: file every listed copy in sender order (the
     messages as pass 1 copied them)."""
     cap = in_type.shape[1]
-    n_bytes = scr.tx_data.shape[1]
+    rx_cut, rx_j, rx_d = scr.rx_cut, scr.rx_j, scr.rx_d
+    tx_type, tx_data, part_n = scr.tx_type, scr.tx_data, scr.part_n
+    n_bytes = tx_data.shape[1]
     in_count[lo:hi] = 0
     delivered = 0
     overflow = 0
-    rx_cut = scr.rx_cut
     for q in range(parts):
         first = n * q // parts
-        last = first + scr.part_n[q, PN_SENT]
+        last = first + part_n[q, PN_SENT]
         for m in range(first, last):
-            mtype = scr.tx_type[m]
+            mtype = tx_type[m]
             if m + 1 < last:
                 # the next sender's receivers here: ask for their inbox rows (scattered)
                 for k in range(rx_cut[m + 1, p], rx_cut[m + 1, p + 1]):
-                    j = scr.rx_j[m + 1, k]
+                    j = rx_j[m + 1, k]
                     prefetch(in_count, j)
                     prefetch(in_type, j)
                     prefetch(in_data, j)
                     prefetch(in_dist, j)
             # this part's receivers of sender row m (pass 1 put them together)
             for k in range(rx_cut[m, p], rx_cut[m, p + 1]):
-                j = scr.rx_j[m, k]
+                j = rx_j[m, k]
                 c = in_count[j]
                 if c >= cap:
                     overflow += 1
@@ -452,15 +484,15 @@ def _radio_file_part(lo, hi, n, parts, in_count, in_type, in_data, in_dist, scr,
                 in_type[j, c] = mtype
                 if n_bytes == PAYLOAD_BYTES:  # a constant count: one unrolled copy
                     for b in range(PAYLOAD_BYTES):
-                        in_data[j, c, b] = scr.tx_data[m, b]
+                        in_data[j, c, b] = tx_data[m, b]
                 else:
                     for b in range(n_bytes):
-                        in_data[j, c, b] = scr.tx_data[m, b]
-                in_dist[j, c] = scr.rx_d[m, k]
+                        in_data[j, c, b] = tx_data[m, b]
+                in_dist[j, c] = rx_d[m, k]
                 in_count[j] = c + 1
                 delivered += 1
-    scr.part_n[p, PN_DELIVERED] = delivered
-    scr.part_n[p, PN_OVERFLOW] = overflow
+    part_n[p, PN_DELIVERED] = delivered
+    part_n[p, PN_OVERFLOW] = overflow
 
 
 @njit(cache=True)
@@ -542,9 +574,7 @@ def _move_part(lo, hi, tick, cfg, grid, pos, heading, motor, alive, present, spe
     sin_leg = np.sin(leg)
     walls = cfg.arena > 0.0
     two_pi = 2.0 * np.pi
-    sx, sy, slot, sbx, sby = grid.sx, grid.sy, grid.slot, grid.sbx, grid.sby
-    budget = grid.budget
-    ref_x, ref_y = grid.ref_x, grid.ref_y
+    sxb, slot, sref = grid.sxb, grid.slot, grid.sref
     span = grid.geom[G_CELL] + 2.0 * grid.geom[G_MARGIN]
     drift2 = grid.geom[G_DRIFT] * grid.geom[G_DRIFT]
     stale = False
@@ -552,14 +582,9 @@ def _move_part(lo, hi, tick, cfg, grid, pos, heading, motor, alive, present, spe
     for i in range(lo, hi):
         if i + PREFETCH_AHEAD < hi:
             ahead = slot[i + PREFETCH_AHEAD]
-            prefetch(sx, ahead)
-            prefetch(sy, ahead)
-            prefetch(sbx, ahead)
-            prefetch(sby, ahead)
-            prefetch(budget, ahead)
+            prefetch(sxb, ahead)
+            prefetch(sref, ahead)
             prefetch(flags, ahead)
-            prefetch(ref_x, ahead)
-            prefetch(ref_y, ahead)
         m = motor[i]
         if m == 0 or not alive[i] or not present[i]:
             continue
@@ -570,39 +595,40 @@ def _move_part(lo, hi, tick, cfg, grid, pos, heading, motor, alive, present, spe
             trig[i, 2] = np.sin(h)
         ch = trig[i, 1]
         sh = trig[i, 2]
-        if m == 1:
-            step = speed[i] * dt
-            if cfg.speed_noise > 0.0:
-                step *= 1.0 + cfg.speed_noise * hash_normal(key, tick, i, SALT_SPEED_A,
-                                                            SALT_SPEED_B)
-            x = pos[i, 0] + step * ch
-            y = pos[i, 1] + step * sh
-            h_new = h
-            travel = abs(step)
-        else:
-            rate = turn_rate[i]
-            if trig[i, 3] != rate:
-                trig[i, 3] = rate
-                trig[i, 4] = np.cos(rate * dt)
-                trig[i, 5] = np.sin(rate * dt)
-            cd = trig[i, 4]
-            sd = trig[i, 5]
-            dth = rate * dt
-            if m == 3:
-                sd = -sd
-                dth = -dth
-                sl = -sin_leg
-            else:
-                sl = sin_leg
-            ca = ch * cos_leg - sh * sl
-            sa = sh * cos_leg + ch * sl
-            ca2 = ca * cd - sa * sd
-            sa2 = sa * cd + ca * sd
-            x = pos[i, 0] + r * (ca - ca2)
-            y = pos[i, 1] + r * (sa - sa2)
-            h_new = h + dth
-            travel = r * abs(dth)
-            ch, sh = ch * cd - sh * sd, sh * cd + ch * sd
+        # forward and turning are both computed and one is selected (which one is
+        # random per robot: a branch on it is mispredicted often); the values are the
+        # same as if only the chosen one were computed
+        fwd = m == 1
+        step = speed[i] * dt
+        if fwd and cfg.speed_noise > 0.0:
+            step *= 1.0 + cfg.speed_noise * hash_normal(key, tick, i, SALT_SPEED_A,
+                                                        SALT_SPEED_B)
+        rate = turn_rate[i]
+        if trig[i, 3] != rate:
+            trig[i, 3] = rate
+            trig[i, 4] = np.cos(rate * dt)
+            trig[i, 5] = np.sin(rate * dt)
+        cw = m == 3  # clockwise about the right leg, else counter-clockwise about the left
+        cd = trig[i, 4]
+        sd = -trig[i, 5] if cw else trig[i, 5]
+        dth = -(rate * dt) if cw else rate * dt
+        sl = -sin_leg if cw else sin_leg
+        # leg direction a = heading +- leg_angle; the centre rotates by dth about
+        # the leg at pos + r*(cos a, sin a): new centre = leg - r*(cos(a+dth), ...)
+        ca = ch * cos_leg - sh * sl
+        sa = sh * cos_leg + ch * sl
+        ca2 = ca * cd - sa * sd
+        sa2 = sa * cd + ca * sd
+        px = pos[i, 0]
+        py = pos[i, 1]
+        x = px + step * ch if fwd else px + r * (ca - ca2)
+        y = py + step * sh if fwd else py + r * (sa - sa2)
+        h_new = h if fwd else h + dth
+        travel = abs(step) if fwd else r * abs(dth)  # turning: arc length >= chord
+        ch_t = ch * cd - sh * sd
+        sh_t = sh * cd + ch * sd
+        ch = ch if fwd else ch_t
+        sh = sh if fwd else sh_t
         if cfg.heading_noise > 0.0:
             h_new += cfg.heading_noise * hash_normal(key, tick, i, SALT_HEAD_A, SALT_HEAD_B)
             ch = np.cos(h_new)
@@ -621,15 +647,15 @@ def _move_part(lo, hi, tick, cfg, grid, pos, heading, motor, alive, present, spe
         trig[i, 1] = ch
         trig[i, 2] = sh
         s = slot[i]
-        sx[s] = x
-        sy[s] = y
-        bx = sbx[s]
-        by = sby[s]
+        sxb[s, P_X] = x
+        sxb[s, P_Y] = y
+        bx = sref[s, R_BX]
+        by = sref[s, R_BY]
         if x < bx or x >= bx + span or y < by or y >= by + span:
             stale = True
-        drift |= drifted(ref_x, ref_y, s, x, y, drift2)
-        b = budget[s] - travel
-        budget[s] = b
+        drift |= drifted(sref, s, x, y, drift2)
+        b = sxb[s, P_BUDGET] - travel
+        sxb[s, P_BUDGET] = b
         if b <= 0.0:
             flags[s] |= 1
     out[at] = 1 if stale else 0
@@ -716,14 +742,13 @@ def _collide_strip(lo, hi, cur_bit, nxt_bit, lists_ok, cfg, grid, pos, motor, fl
     resolve2 = (contact - cfg.slop) * (contact - cfg.slop)
     walls = cfg.arena > 0.0
     arena = cfg.arena
-    start, sx, sy, sidx, sbx, sby = grid.start, grid.sx, grid.sy, grid.sidx, grid.sbx, grid.sby
+    start, sxb, sidx, sref = grid.start, grid.sxb, grid.sidx, grid.sref
     margin = grid.geom[G_MARGIN]
     reach = contact + 2.0 * margin
     near2 = (contact + margin) * (contact + margin)
     half_margin = 0.5 * margin
     contact2 = contact * contact
     share_k = 0.5 / (2.0 * contact + margin)
-    budget = grid.budget
     span = grid.geom[G_CELL] + 2.0 * grid.geom[G_MARGIN]
     inv = grid.geom[G_INV]
     ox = grid.geom[G_OX]
@@ -733,8 +758,8 @@ def _collide_strip(lo, hi, cur_bit, nxt_bit, lists_ok, cfg, grid, pos, motor, fl
     near_r = contact + margin
     drift2 = grid.geom[G_DRIFT] * grid.geom[G_DRIFT]
     epoch = grid.state[S_EPOCH]
-    near_slots, near_n, near_epoch = grid.near_slots, grid.near_n, grid.near_epoch
-    ref_x, ref_y = grid.ref_x, grid.ref_y
+    near_slots = grid.near_slots
+    epoch32 = np.int32(epoch)
     list_r2, list_reach_mm = list_reach(grid, near_r)
     drift = False
     examined = 0
@@ -750,9 +775,11 @@ def _collide_strip(lo, hi, cur_bit, nxt_bit, lists_ok, cfg, grid, pos, motor, fl
     for w in range(n_work):
         a = work[w]
         f = flags[a] & ~cur_bit
-        xi = sx[a]
-        yi = sy[a]
-        if xi < sbx[a] or xi >= sbx[a] + span or yi < sby[a] or yi >= sby[a] + span:
+        xi = sxb[a, P_X]
+        yi = sxb[a, P_Y]
+        abx = sref[a, R_BX]
+        aby = sref[a, R_BY]
+        if xi < abx or xi >= abx + span or yi < aby or yi >= aby + span:
             # pushed out of its slack box earlier in this pass: its query could reach
             # beyond the rows next to its own; examine it after the rebuild
             stale = True
@@ -766,75 +793,98 @@ def _collide_strip(lo, hi, cur_bit, nxt_bit, lists_ok, cfg, grid, pos, motor, fl
         own = half_margin
         n_list = -1
         if lists_ok and not drift:
-            if near_epoch[a] != epoch:
-                row_a = np.int64((sby[a] + margin - oy) * inv + 0.5)
-                near_n[a] = contact_list_from(start, sx, sy, near_slots, a, xi, yi, list_r2,
-                                              list_reach_mm, ox, oy, inv, nx, ny,
-                                              row_a - 1, row_a + 1, near)
-                near_epoch[a] = epoch
-            n_list = near_n[a]
+            if near_slots[a, L_EPOCH] != epoch32:
+                row_a = np.int64((sref[a, R_BY] + margin - oy) * inv + 0.5)
+                contact_list_from(start, sxb, near_slots, a, xi, yi, list_r2, list_reach_mm,
+                                  ox, oy, inv, nx, ny, row_a - 1, row_a + 1, epoch, near)
+            n_list = near_slots[a, L_COUNT]
+        still_a = motor[sidx[a]] == 0
         if n_list >= 0:
-            n_over, own = list_overlaps(near_slots, a, n_list, xi, yi, own, near2, contact2,
-                                        share_k, resolve2, half_margin, sx, sy, budget, near)
+            # the listed slots in one loop, as in etswarm.sim.collide.collide_phase:
+            # budgets and the pairs to push from the position at the examination's start
+            x0 = xi
+            y0 = yi
+            for q in range(L_FIRST, L_FIRST + n_list):
+                s = np.uint32(near_slots[a, q])
+                xs = sxb[s, P_X]
+                ys = sxb[s, P_Y]
+                dx = xs - x0
+                dy = ys - y0
+                d2 = dx * dx + dy * dy
+                within = np.float64(d2 < near2)
+                share = (within * max((d2 - contact2) * share_k, 0.0)
+                         + (1.0 - within) * half_margin)
+                own = min(own, share)
+                sxb[s, P_BUDGET] = min(sxb[s, P_BUDGET], share)
+                if d2 >= resolve2:
+                    continue
+                dx = xs - xi
+                dy = ys - yi
+                d2 = dx * dx + dy * dy
+                if d2 >= resolve2:
+                    continue
+                j = sidx[s]
+                xi, yi, xj, yj = push_apart(a, s, dx, dy, d2, xi, yi, xs, ys, still_a,
+                                            motor[j] == 0, contact, still_share, r, walls,
+                                            arena)
+                sxb[s, P_X] = xj
+                sxb[s, P_Y] = yj
+                sxb[s, P_BUDGET] = 0.0
+                pos[j, 0] = xj
+                pos[j, 1] = yj
+                drift |= drifted(sref, s, xj, yj, drift2)
+                bx = sref[s, R_BX]
+                by = sref[s, R_BY]
+                if xj < bx or xj >= bx + span or yj < by or yj >= by + span:
+                    stale = True
+                fs = flags[s]
+                n_next += (fs & nxt_bit) == 0
+                flags[s] = fs | nxt_bit
+                moved_i = True
+                pushes += 1
         else:
             n_over, own = gather_overlaps(a, xi, yi, own, reach, near2, contact2, share_k,
-                                          resolve2, ox, oy, inv, nx, ny, start, sx, sy,
-                                          budget, near, near_d2)
-        for q in range(n_over):
-            s = near[q]
-            dx = sx[s] - xi
-            dy = sy[s] - yi
-            d2 = dx * dx + dy * dy
-            if d2 >= resolve2:
-                continue
-            d = np.sqrt(d2)
-            if d > 1e-9:
-                ux = dx / d
-                uy = dy / d
-            else:
-                ang = 2.399963229728653 * ((a + 1) * (s + 1) % 1024)
-                ux = np.cos(ang)
-                uy = np.sin(ang)
-            j = sidx[s]
-            share_j = 0.5
-            if (motor[sidx[a]] == 0) != (motor[j] == 0):
-                share_j = still_share if motor[j] == 0 else 1.0 - still_share
-            depth = contact - d
-            xi -= (1.0 - share_j) * depth * ux
-            yi -= (1.0 - share_j) * depth * uy
-            xj = sx[s] + share_j * depth * ux
-            yj = sy[s] + share_j * depth * uy
-            if walls:
-                xi = clamp_to_arena(xi, r, arena)
-                yi = clamp_to_arena(yi, r, arena)
-                xj = clamp_to_arena(xj, r, arena)
-                yj = clamp_to_arena(yj, r, arena)
-            sx[s] = xj
-            sy[s] = yj
-            pos[j, 0] = xj
-            pos[j, 1] = yj
-            budget[s] = 0.0
-            drift |= drifted(ref_x, ref_y, s, xj, yj, drift2)
-            bx = sbx[s]
-            by = sby[s]
-            if xj < bx or xj >= bx + span or yj < by or yj >= by + span:
-                stale = True
-            fs = flags[s]
-            n_next += (fs & nxt_bit) == 0
-            flags[s] = fs | nxt_bit
-            moved_i = True
-            pushes += 1
+                                          resolve2, ox, oy, inv, nx, ny, start, sxb,
+                                          near, near_d2)
+            for q in range(n_over):
+                s = near[q]
+                xs = sxb[s, P_X]
+                ys = sxb[s, P_Y]
+                dx = xs - xi
+                dy = ys - yi
+                d2 = dx * dx + dy * dy
+                if d2 >= resolve2:
+                    continue
+                j = sidx[s]
+                xi, yi, xj, yj = push_apart(a, s, dx, dy, d2, xi, yi, xs, ys, still_a,
+                                            motor[j] == 0, contact, still_share, r, walls,
+                                            arena)
+                sxb[s, P_X] = xj
+                sxb[s, P_Y] = yj
+                sxb[s, P_BUDGET] = 0.0
+                pos[j, 0] = xj
+                pos[j, 1] = yj
+                drift |= drifted(sref, s, xj, yj, drift2)
+                bx = sref[s, R_BX]
+                by = sref[s, R_BY]
+                if xj < bx or xj >= bx + span or yj < by or yj >= by + span:
+                    stale = True
+                fs = flags[s]
+                n_next += (fs & nxt_bit) == 0
+                flags[s] = fs | nxt_bit
+                moved_i = True
+                pushes += 1
         if not moved_i:
-            budget[a] = own
+            sxb[a, P_BUDGET] = own
         else:
             i = sidx[a]
-            budget[a] = 0.0
-            sx[a] = xi
-            sy[a] = yi
+            sxb[a, P_BUDGET] = 0.0
+            sxb[a, P_X] = xi
+            sxb[a, P_Y] = yi
             pos[i, 0] = xi
             pos[i, 1] = yi
-            drift |= drifted(ref_x, ref_y, a, xi, yi, drift2)
-            if xi < sbx[a] or xi >= sbx[a] + span or yi < sby[a] or yi >= sby[a] + span:
+            drift |= drifted(sref, a, xi, yi, drift2)
+            if xi < abx or xi >= abx + span or yi < aby or yi >= aby + span:
                 stale = True
             fa = flags[a]
             n_next += (fa & nxt_bit) == 0
@@ -1009,13 +1059,13 @@ def prebuild_lists(p, cfg, grid, scr):
     if grid.state[S_DRIFTED] != 0:
         return
     epoch = grid.state[S_EPOCH]
+    epoch32 = np.int32(epoch)
     n_filed = grid.start[grid.dims[0] * grid.dims[1]]
     margin = grid.geom[G_MARGIN]
     near_r = 2.0 * cfg.radius + margin
     oy = grid.geom[G_OY]
     inv = grid.geom[G_INV]
-    sx, sy, sby, start, near_slots = grid.sx, grid.sy, grid.sby, grid.start, grid.near_slots
-    near_n, near_epoch = grid.near_n, grid.near_epoch
+    sxb, sref, start, near_slots = grid.sxb, grid.sref, grid.start, grid.near_slots
     list_r2, list_reach_mm = list_reach(grid, near_r)
     ox = grid.geom[G_OX]
     nx = grid.dims[0]
@@ -1026,13 +1076,12 @@ def prebuild_lists(p, cfg, grid, scr):
         if first >= n_filed:
             return
         for a in range(first, min(first + PREBUILD_CHUNK, n_filed)):
-            if near_epoch[a] != epoch:
+            if near_slots[a, L_EPOCH] != epoch32:
                 # the rows next to its own only, as in the collision strips
-                row_a = np.int64((sby[a] + margin - oy) * inv + 0.5)
-                near_n[a] = contact_list_from(start, sx, sy, near_slots, a, sx[a], sy[a],
-                                              list_r2, list_reach_mm, ox, oy, inv, nx, ny,
-                                              row_a - 1, row_a + 1, buf)
-                near_epoch[a] = epoch
+                row_a = np.int64((sref[a, R_BY] + margin - oy) * inv + 0.5)
+                contact_list_from(start, sxb, near_slots, a, sxb[a, P_X], sxb[a, P_Y],
+                                  list_r2, list_reach_mm, ox, oy, inv, nx, ny, row_a - 1,
+                                  row_a + 1, epoch, buf)
 
 
 @njit(cache=True)

@@ -15,7 +15,7 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
-from etswarm.sim.neighbours import G_INV, G_MARGIN, G_OX, G_OY, cell_range
+from etswarm.sim.neighbours import G_INV, G_MARGIN, G_OX, G_OY, P_X, P_Y, cell_range
 from etswarm.sim.prefetch import prefetch
 from etswarm.sim.world import PAYLOAD_BYTES
 
@@ -30,7 +30,7 @@ def radio_phase(tick, cfg, grid, pos, alive, present, tx_phase, out_on, out_type
     slot = tick % cfg.tx_period
     rng_r = cfg.comm_range
     r2 = rng_r * rng_r
-    start, sx, sy, sidx = grid.start, grid.sx, grid.sy, grid.sidx
+    start, sxb, sidx = grid.start, grid.sxb, grid.sidx
     inv = grid.geom[G_INV]
     ox = grid.geom[G_OX]
     oy = grid.geom[G_OY]
@@ -61,8 +61,8 @@ def radio_phase(tick, cfg, grid, pos, alive, present, tx_phase, out_on, out_type
         for cy in range(cy0, cy1 + 1):
             row = cy * nx
             for s in range(np.uint64(start[row + cx0]), np.uint64(start[row + cx1 + 1])):
-                dx = sx[s] - x
-                dy = sy[s] - y
+                dx = sxb[s, P_X] - x
+                dy = sxb[s, P_Y] - y
                 d2 = dx * dx + dy * dy
                 cand_s[n_in] = s
                 cand_d2[n_in] = d2
