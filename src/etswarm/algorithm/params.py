@@ -83,7 +83,7 @@ class ETParams:
     #: Offset of the pair window's centre from d. A searcher orbits at d from the nearest
     #: placed robot and enters the window from outside, so it tends to stop on the far
     #: side of a site; a negative offset moves the window in to meet it.
-    pair_aim_mm: float = 0.0
+    pair_aim_mm: float = -2.0
     #: A searcher at the shape for 20 min has widened its pair and balance tolerances to
     #: this factor (at pockets of three or more placed neighbours); 1 never widens.
     widen_max: float = 3.0
@@ -130,7 +130,7 @@ class ETParams:
     #: near its aim drives straight on instead of pivoting ("on"), or pivots to and fro as
     #: along the shape ("off", the paper's edge-following). After a regeneration the
     #: Queued robots stand packed round the shape and every searcher edge-follows.
-    queue_stride: str = "off"
+    queue_stride: str = "on"
     #: While electing, robots note and flood where placed neighbours fell silent, and the
     #: Leader keeps the scaled target off those sites ("on", see ``silent``), or places it
     #: from the robots it hears alone ("off").

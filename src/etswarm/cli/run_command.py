@@ -53,7 +53,7 @@ from etswarm.algorithm.layout import LAYOUTS
               help="While electing, robots flood where placed neighbours fell silent (dead "
                    "robots) and the Leader keeps the scaled target off those sites "
                    "(--no-silent-sites: it places it from the robots it hears alone).")
-@click.option("--queue-stride/--no-queue-stride", default=False, show_default=True,
+@click.option("--queue-stride/--no-queue-stride", default=True, show_default=True,
               help="In the first formation, a searcher along the queue near its aim drives "
                    "straight on instead of pivoting (--no-queue-stride: the paper's "
                    "edge-following all the way).")
