@@ -115,23 +115,30 @@ def check_task(spec: SweepSpec) -> None:
 
 
 @contextlib.contextmanager
-def terminate_as_interrupt() -> Iterator[None]:
-    """While inside, SIGTERM (a batch system's time limit, ``kill``) acts like Ctrl-C.
+def interrupt_signals() -> Iterator[list[int]]:
+    """While inside, Ctrl-C (SIGINT) and SIGTERM (a batch system's time limit, ``kill``)
+    raise KeyboardInterrupt, and each signal number is appended to the yielded list.
 
-    Only in the main thread (signal handlers cannot be set elsewhere); restored on exit.
+    The list tells the sweep it was interrupted even when Dask's client code catches the
+    KeyboardInterrupt (it then cancels the futures, which would otherwise be stored as
+    failed runs). Only in the main thread (signal handlers cannot be set elsewhere);
+    the previous handlers are restored on exit.
     """
+    seen: list[int] = []
     if threading.current_thread() is not threading.main_thread():
-        yield
+        yield seen
         return
 
     def interrupt(signum: int, frame: Any) -> None:
+        seen.append(signum)
         raise KeyboardInterrupt(f"signal {signum}")
 
-    previous = signal.signal(signal.SIGTERM, interrupt)
+    previous = {sig: signal.signal(sig, interrupt) for sig in (signal.SIGINT, signal.SIGTERM)}
     try:
-        yield
+        yield seen
     finally:
-        signal.signal(signal.SIGTERM, previous)
+        for sig, handler in previous.items():
+            signal.signal(sig, handler)
 
 
 @contextlib.contextmanager
@@ -206,7 +213,7 @@ def run_sweep(
                 if client is not None
                 else dask_client(scheduler, workers)
             )
-            with terminate_as_interrupt(), session as client, progress:
+            with interrupt_signals() as signals, session as client, progress:
                 by_key: dict[Any, Run] = {}
                 pending: dict[Any, Any] = {}  # key -> future; dropped once stored
                 for run in todo:
@@ -225,6 +232,8 @@ def run_sweep(
                     for future in as_completed(list(pending.values())):
                         pending.pop(future.key, None)  # frees the result on the cluster
                         record = _collect(future, by_key[future.key], spec.task)
+                        if signals:
+                            raise KeyboardInterrupt  # futures cancelled on the way: not failures
                         if record is None:
                             continue
                         store.write(record)
@@ -235,6 +244,7 @@ def run_sweep(
                 except KeyboardInterrupt:
                     interrupted = True
                     client.cancel(list(pending.values()))
+                interrupted = interrupted or bool(signals)
         except KeyboardInterrupt:
             interrupted = True
     table = write_results(spec, store)
