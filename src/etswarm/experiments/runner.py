@@ -161,7 +161,7 @@ def dask_client(scheduler: str | None, workers: int | None) -> Iterator[Client]:
         processes=True,
         host="127.0.0.1",
         dashboard_address=None,
-        silence_logs=logging.ERROR,
+        silence_logs=logging.CRITICAL,  # shutdown races log comm errors with tracebacks
     )
     try:
         client = Client(cluster)
