@@ -176,17 +176,9 @@ def collide_phase(cfg, grid, pos, present, motor, dirty, dirty_flag, n_dirty, sp
                     xi, yi, xj, yj = push_apart(a, s, dx, dy, d2, xi, yi, xs, ys, still_a,
                                                 motor[j] == 0, contact, still_share, r,
                                                 walls, arena)
-                    sxb[s, P_X] = xj
-                    sxb[s, P_Y] = yj
-                    sxb[s, P_BUDGET] = 0.0
-                    pos[j, 0] = xj
-                    pos[j, 1] = yj
-                    if drifted(sref, s, xj, yj, drift2):
-                        lists_ok = False
-                    bx = sref[s, R_BX]
-                    by = sref[s, R_BY]
-                    if xj < bx or xj >= bx + span or yj < by or yj >= by + span:
-                        stale = True
+                    far, left_box = place_pushed(s, j, xj, yj, sxb, sref, pos, drift2, span)
+                    lists_ok = lists_ok and not far
+                    stale = stale or left_box
                     # listed once: written always, kept if new (no branch to mispredict;
                     # the bound check fails only when every slot is listed)
                     if n_next < n_slots:
@@ -212,17 +204,9 @@ def collide_phase(cfg, grid, pos, present, motor, dirty, dirty_flag, n_dirty, sp
                     xi, yi, xj, yj = push_apart(a, s, dx, dy, d2, xi, yi, xs, ys, still_a,
                                                 motor[j] == 0, contact, still_share, r,
                                                 walls, arena)
-                    sxb[s, P_X] = xj
-                    sxb[s, P_Y] = yj
-                    sxb[s, P_BUDGET] = 0.0
-                    pos[j, 0] = xj
-                    pos[j, 1] = yj
-                    if drifted(sref, s, xj, yj, drift2):
-                        lists_ok = False
-                    bx = sref[s, R_BX]
-                    by = sref[s, R_BY]
-                    if xj < bx or xj >= bx + span or yj < by or yj >= by + span:
-                        stale = True
+                    far, left_box = place_pushed(s, j, xj, yj, sxb, sref, pos, drift2, span)
+                    lists_ok = lists_ok and not far
+                    stale = stale or left_box
                     if n_next < n_slots:
                         nxt_list[n_next] = s
                     n_next += dirty_flag[s] == 0
@@ -269,6 +253,22 @@ def collide_phase(cfg, grid, pos, present, motor, dirty, dirty_flag, n_dirty, sp
     counters[4] += pushes
     counters[6] += examined
     return n_cur
+
+
+@njit(cache=True)
+def place_pushed(s, j, xj, yj, sxb, sref, pos, drift2, span):
+    """Slot ``s`` (robot ``j``) was pushed to (xj, yj) mm: write it to the slot row (its
+    budget used up) and to ``pos``. Returns (moved beyond the epoch's drift, left its
+    slack box), the two conditions that make contact lists or the grid stale."""
+    sxb[s, P_X] = xj
+    sxb[s, P_Y] = yj
+    sxb[s, P_BUDGET] = 0.0
+    pos[j, 0] = xj
+    pos[j, 1] = yj
+    bx = sref[s, R_BX]
+    by = sref[s, R_BY]
+    left_box = xj < bx or xj >= bx + span or yj < by or yj >= by + span
+    return drifted(sref, s, xj, yj, drift2), left_box
 
 
 @njit(cache=True)

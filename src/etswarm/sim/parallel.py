@@ -60,7 +60,7 @@ from typing import NamedTuple
 import numpy as np
 from numba import njit
 
-from etswarm.sim.collide import gather_overlaps, push_apart
+from etswarm.sim.collide import gather_overlaps, place_pushed, push_apart
 from etswarm.sim.motion import PREFETCH_AHEAD, clamp_to_arena
 from etswarm.sim.neighbours import (
     G_CELL,
@@ -827,16 +827,9 @@ def _collide_strip(lo, hi, cur_bit, nxt_bit, lists_ok, cfg, grid, pos, motor, fl
                 xi, yi, xj, yj = push_apart(a, s, dx, dy, d2, xi, yi, xs, ys, still_a,
                                             motor[j] == 0, contact, still_share, r, walls,
                                             arena)
-                sxb[s, P_X] = xj
-                sxb[s, P_Y] = yj
-                sxb[s, P_BUDGET] = 0.0
-                pos[j, 0] = xj
-                pos[j, 1] = yj
-                drift |= drifted(sref, s, xj, yj, drift2)
-                bx = sref[s, R_BX]
-                by = sref[s, R_BY]
-                if xj < bx or xj >= bx + span or yj < by or yj >= by + span:
-                    stale = True
+                far, left_box = place_pushed(s, j, xj, yj, sxb, sref, pos, drift2, span)
+                drift |= far
+                stale = stale or left_box
                 fs = flags[s]
                 n_next += (fs & nxt_bit) == 0
                 flags[s] = fs | nxt_bit
@@ -859,16 +852,9 @@ def _collide_strip(lo, hi, cur_bit, nxt_bit, lists_ok, cfg, grid, pos, motor, fl
                 xi, yi, xj, yj = push_apart(a, s, dx, dy, d2, xi, yi, xs, ys, still_a,
                                             motor[j] == 0, contact, still_share, r, walls,
                                             arena)
-                sxb[s, P_X] = xj
-                sxb[s, P_Y] = yj
-                sxb[s, P_BUDGET] = 0.0
-                pos[j, 0] = xj
-                pos[j, 1] = yj
-                drift |= drifted(sref, s, xj, yj, drift2)
-                bx = sref[s, R_BX]
-                by = sref[s, R_BY]
-                if xj < bx or xj >= bx + span or yj < by or yj >= by + span:
-                    stale = True
+                far, left_box = place_pushed(s, j, xj, yj, sxb, sref, pos, drift2, span)
+                drift |= far
+                stale = stale or left_box
                 fs = flags[s]
                 n_next += (fs & nxt_bit) == 0
                 flags[s] = fs | nxt_bit
