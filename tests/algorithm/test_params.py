@@ -51,3 +51,17 @@ def test_the_run_command_takes_et_options() -> None:
     assert bad.exit_code != 0
     assert isinstance(bad.exception, EtswarmError)  # the CLI group prints it on one line
     assert "widen_max must be >= 1" in str(bad.exception)
+
+
+def test_the_pair_window_centre_relaxes_back_to_d() -> None:
+    from etswarm.algorithm.search import window_centre
+
+    minutes = 31 * 60
+    _ci, fixed = ETParams(pair_aim_mm=-2.0).pack(31, 0, 0)
+    _ci, relaxing = ETParams(pair_aim_mm=-2.0, pair_aim_relax_s=600.0).pack(31, 0, 0)
+    assert window_centre(fixed, 0) == window_centre(fixed, 60 * minutes) == 38.0
+    assert window_centre(relaxing, 0) == 38.0
+    assert window_centre(relaxing, 5 * minutes) == pytest.approx(39.0)
+    assert window_centre(relaxing, 10 * minutes) == window_centre(relaxing, 99 * minutes) == 40.0
+    with pytest.raises(EtswarmError, match="pair_aim_relax_s must be >= 0"):
+        ETParams(pair_aim_relax_s=-1.0)

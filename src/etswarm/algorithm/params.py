@@ -49,7 +49,8 @@ F_BALANCE_TOL = 7  # the two references' distances may differ by at most this
 F_WALK_COLLECT = 8  # the census walker records the tags of robots heard nearer than this
 F_PAIR_AIM = 9  # the pair window is centred this far from d (negative: nearer)
 F_WIDEN_MAX = 10  # a searcher long at the shape widens its tolerances up to this factor
-N_CF = 11
+F_AIM_RELAX = 11  # ticks at the shape over which the pair window's centre moves back to d
+N_CF = 12
 
 #: Census methods (``ETParams.census``): the paper's periphery walk, or a spanning tree.
 CENSUS_METHODS = ("tree", "walk")
@@ -59,7 +60,7 @@ ORBIT_MODES = ("bounce", "clockwise")
 
 
 #: Parameters that may be zero (all others must be positive).
-NON_NEGATIVE: frozenset[str] = frozenset()
+NON_NEGATIVE: frozenset[str] = frozenset({"pair_aim_relax_s"})
 #: Parameters that may take any sign.
 SIGNED = frozenset({"pair_aim_mm", "follow_offset_mm"})
 
@@ -84,6 +85,10 @@ class ETParams:
     #: placed robot and enters the window from outside, so it tends to stop on the far
     #: side of a site; a negative offset moves the window in to meet it.
     pair_aim_mm: float = -2.0
+    #: The window's centre moves back from ``pair_aim_mm`` to d over a searcher's first
+    #: this many seconds at the shape; 0 keeps it at ``pair_aim_mm``. 600 forms thin
+    #: shapes about twice as fast, compact ones less often (docs/algorithm.md).
+    pair_aim_relax_s: float = 0.0
     #: A searcher at the shape for 20 min has widened its pair and balance tolerances to
     #: this factor (at pockets of three or more placed neighbours); 1 never widens.
     widen_max: float = 3.0
@@ -213,6 +218,7 @@ class ETParams:
         cf[F_PAIR_TOL] = self.pair_tol_mm
         cf[F_PAIR_AIM] = self.pair_aim_mm
         cf[F_WIDEN_MAX] = self.widen_max
+        cf[F_AIM_RELAX] = self.pair_aim_relax_s * ticks_per_s
         cf[F_CONSIST_TOL] = self.consistency_tol_mm
         cf[F_YIELD_DIST] = self.yield_distance_mm
         cf[F_FOLLOW_OFFSET] = self.follow_offset_mm

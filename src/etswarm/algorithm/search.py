@@ -71,6 +71,7 @@ from etswarm.algorithm.params import (
     C_TICKS_NB_FRESH,
     C_TICKS_SETTLE,
     C_TICKS_YIELD_MAX,
+    F_AIM_RELAX,
     F_BALANCE_TOL,
     F_CLEARANCE,
     F_CLOSING,
@@ -231,12 +232,11 @@ def encloses_a_site(i, cx, cy, nb, gene_flag, ci):  # type: ignore[no-untyped-de
 
 
 @njit
-def in_window(dist_a, dist_b, d, cf, tol_scale):  # type: ignore[no-untyped-def]
+def in_window(dist_a, dist_b, aim, cf, tol_scale):  # type: ignore[no-untyped-def]
     """Two references heard at ``dist_a`` and ``dist_b`` mm are both within the pair
-    tolerance of d and within the balance tolerance of each other (both times
-    ``tol_scale``)."""
+    tolerance of ``aim`` (mm, the window's centre) and within the balance tolerance of
+    each other (both times ``tol_scale``)."""
     pair_tol = cf[F_PAIR_TOL] * tol_scale
-    aim = d + cf[F_PAIR_AIM]
     return (
         abs(dist_a - aim) <= pair_tol
         and abs(dist_b - aim) <= pair_tol
@@ -316,10 +316,20 @@ def closes_a_hole(i, cx, cy, nb, gene_flag, ci):  # type: ignore[no-untyped-def]
     return False
 
 
+@njit(inline="always")
+def window_centre(cf, at_shape):  # type: ignore[no-untyped-def]
+    """Centre of the pair window (mm) for a searcher ``at_shape`` ticks at the shape:
+    d + ``pair_aim_mm``, moving back to d over ``pair_aim_relax_s`` when that is set."""
+    offset = cf[F_PAIR_AIM]
+    if cf[F_AIM_RELAX] > 0.0:
+        offset *= max(0.0, 1.0 - at_shape / cf[F_AIM_RELAX])
+    return cf[F_SPACING] + offset
+
+
 @njit
 def find_site(  # type: ignore[no-untyped-def]
     i, tick, since, strict, ref_id, from_id, orbit, nb, nb_dist, gene_flag, ci, cf, tol_scale,
-    wide_min, held_i, ox, oy,
+    wide_min, held_i, ox, oy, pair_aim,
 ):
     """Localise robot i from its placed neighbours (paper Sec. 4.1).
 
@@ -340,13 +350,13 @@ def find_site(  # type: ignore[no-untyped-def]
     whole shape, else from the robots it hears (``encloses_a_site``, ``closes_a_hole``).
     ``tol_scale`` widens the pair and balance tolerances; a candidate gets the wider window
     only when at least ``wide_min`` placed robots of its neighbour sites were heard (a
-    pocket, where the site is hard to mistake), else the plain one.
+    pocket, where the site is hard to mistake), else the plain one. ``pair_aim`` (mm) is
+    the window's centre (``window_centre``).
 
     Returns ``(found, x, y, min_active_ts)``; the best-fitting candidate wins.
     """
     d = cf[F_SPACING]
     pair_tol = cf[F_PAIR_TOL] * tol_scale
-    pair_aim = d + cf[F_PAIR_AIM]
     consist_tol = cf[F_CONSIST_TOL]
     second_ring = ci[C_SECOND_RING]
     hole_memory = ci[C_HOLE_MEMORY] == 1
@@ -368,7 +378,7 @@ def find_site(  # type: ignore[no-untyped-def]
                 continue
             if nb[i, b, NB_LAST] < since or abs(nb_dist[i, b] - pair_aim) > pair_tol:
                 continue
-            if not in_window(nb_dist[i, a], nb_dist[i, b], d, cf, tol_scale):
+            if not in_window(nb_dist[i, a], nb_dist[i, b], pair_aim, cf, tol_scale):
                 # Settle midway between the two references, not where the window opens.
                 continue
             dx = nb[i, b, NB_TX] - ax
@@ -449,7 +459,7 @@ def find_site(  # type: ignore[no-untyped-def]
                 if ok and strict and reported_but_unheard(i, cx, cy, since, nb):
                     ok = False
                 if ok and tol_scale > 1.0 and n_adjacent < wide_min:
-                    ok = in_window(nb_dist[i, a], nb_dist[i, b], d, cf, 1.0)
+                    ok = in_window(nb_dist[i, a], nb_dist[i, b], pair_aim, cf, 1.0)
                 if ok and ruled_out_mirror and min_ts >= 0 and err < best_err:
                     if hole_memory and shuts_in(cx, cy, held_i, ox, oy, gene_flag, ci):
                         continue
@@ -543,11 +553,13 @@ def search_rule(  # type: ignore[no-untyped-def]
     # squeezed where the lattice is distorted and never stand within the tight window.
     widen = 1.0
     pocket = False
+    at_shape = 0
     if ri[i, R_SHAPE_SINCE] > 0:
         at_shape = tick - ri[i, R_SHAPE_SINCE] + 1
         widen = 1.0 + (cf[F_WIDEN_MAX] - 1.0) * min(1.0, at_shape / WIDEN_TICKS)
         # Long at the shape, it may also take a site from the robots round it (``pocket``).
         pocket = ci[C_POCKET] == 1 and at_shape >= POCKET_AFTER_TICKS
+    pair_aim = window_centre(cf, at_shape)
     if ri[i, R_SUB] == SUB_SETTLE:
         motor[i] = STOP
         if tick - ri[i, R_SUB_SINCE] < ci[C_TICKS_SETTLE]:
@@ -559,7 +571,7 @@ def search_rule(  # type: ignore[no-untyped-def]
         wide_min = WIDE_MIN_NEIGHBOURS
         found, cx, cy, min_ts = find_site(
             i, tick, since, True, ref, came, orbit, nb, nb_dist, gene_flag, ci, cf, widen,
-            wide_min, held_i, ox, oy,
+            wide_min, held_i, ox, oy, pair_aim,
         )
         same = found and cx == ri[i, R_CAND_X] and cy == ri[i, R_CAND_Y]
         if not same and pocket:
@@ -612,7 +624,7 @@ def search_rule(  # type: ignore[no-untyped-def]
         wide_min = WIDE_MIN_NEIGHBOURS
         found, cx, cy, min_ts = find_site(
             i, tick, since, False, ref, came, orbit, nb, nb_dist, gene_flag, ci, cf, widen,
-            wide_min, held_i, ox, oy,
+            wide_min, held_i, ox, oy, pair_aim,
         )
         if not found and pocket:
             found, cx, cy, min_ts = pocket_site(
@@ -629,7 +641,7 @@ def search_rule(  # type: ignore[no-untyped-def]
             recent = tick - steer_fresh
             near, _, _, _ = find_site(
                 i, tick, recent, False, ref, came, orbit, nb, nb_dist, gene_flag, ci, cf,
-                CREEP_TOL_SCALE, 0, held_i, ox, oy,
+                CREEP_TOL_SCALE, 0, held_i, ox, oy, pair_aim,
             )
             if near:
                 ri[i, R_CREEP_UNTIL] = tick + CREEP_HOLD_TICKS
