@@ -5,18 +5,21 @@
 
 A case is ``SHAPE:DAMAGE`` or ``SHAPE/N:DAMAGE`` (N robots forming scale(SHAPE, N), --fit).
 For each case and census method, one Markdown table row: runs whose first formation
-completed (only those count further), runs in which every remnant of at least three robots
-re-formed its scaled target (success), at most one Leader per remnant, runs with a tag held
-twice in a remnant, the median time from damage to re-formed; then the census itself over
-all censuses taken (one per remnant that elected a Leader): exact ones, error (count minus
-the remnant's robots at the census; mean and max |error|), mean time from Leader to count
-and from the election's start to count (simulated s), and how the censuses ended (tree;
-walks: returned, enclosed, stuck, timeout, lost).
+completed (only those count further); runs in which every remnant of at least
+``--min-robots`` robots (6, the issue's bar) re-formed its scaled target (success); how
+many of the smaller remnants of 3 or more robots re-formed; at most one Leader per
+remnant; runs with a tag held twice in a remnant; the median time from damage to
+re-formed. Then the census over all censuses taken (one per remnant that elected a
+Leader): exact ones, error (count minus the remnant's robots at the census; mean and max
+|error|), mean time from Leader to count and from the election's start to count
+(simulated s), and how the censuses ended (tree; walks: returned, enclosed, stuck,
+timeout, lost). ``--out FILE`` keeps every run's JSON summary.
 """
 
 from __future__ import annotations
 
 import argparse
+import json
 import os
 import statistics
 from collections import Counter
@@ -54,15 +57,19 @@ def one_run(args: tuple[str, str, str, int, float, dict[str, str]]) -> dict[str,
 
 
 HEADER = (
-    "| shape | damage | census | formed | reformed | <=1 leader | shared tag | median "
-    "re-formation min | censuses | exact | error mean | max abs error | s leader->count | "
-    "s election->count | ends |\n" + "|---" * 15 + "|"
+    "| shape | damage | census | formed | reformed | small remnants reformed | <=1 leader | "
+    "shared tag | median re-formation min | censuses | exact | error mean | max abs error | "
+    "s leader->count | s election->count | ends |\n" + "|---" * 16 + "|"
 )
 
 
-def report(shape: str, damage: str, census: str, seeds: int, runs: list[dict[str, Any]]) -> str:
-    """One table row for the summaries ``runs`` of a case and census method."""
-    formed = reformed = leaders = dups = 0
+def report(
+    shape: str, damage: str, census: str, seeds: int, runs: list[dict[str, Any]],
+    min_robots: int = 6,
+) -> str:
+    """One table row for the summaries ``runs`` of a case and census method; a run
+    succeeds when every remnant of at least ``min_robots`` robots re-formed."""
+    formed = reformed = leaders = dups = small = small_formed = 0
     times: list[float] = []
     errors: list[int] = []
     after_leader: list[float] = []
@@ -72,8 +79,11 @@ def report(shape: str, damage: str, census: str, seeds: int, runs: list[dict[str
         if not s["formed"]:
             continue
         formed += 1
-        comps = [c for c in s["components"] if c["robots"] >= 3]
+        comps = [c for c in s["components"] if c["robots"] >= min_robots]
         reformed += all(c["formed"] for c in comps)
+        smaller = [c for c in s["components"] if 3 <= c["robots"] < min_robots]
+        small += len(smaller)
+        small_formed += sum(c["formed"] for c in smaller)
         leaders += s["max_leaders_per_component"] <= 1
         dups += bool(s["duplicate_tags"])
         times += [c["time_to_stable_s"] / 60 for c in comps if c["formed"]]
@@ -97,7 +107,7 @@ def report(shape: str, damage: str, census: str, seeds: int, runs: list[dict[str
     ends = ", ".join(f"{k} {v}" for k, v in sorted(results.items()))
     return (
         f"| {shape} | {damage} | {census} | {formed}/{seeds} | {reformed}/{formed} | "
-        f"{leaders}/{formed} | {dups} | {median} | {len(errors)} | "
+        f"{small_formed}/{small} | {leaders}/{formed} | {dups} | {median} | {len(errors)} | "
         f"{exact_censuses}/{len(errors)} | {mean(errors)} | {max_abs} | {avg(after_leader)} | "
         f"{avg(after_election)} | {ends} |"
     )
@@ -127,6 +137,14 @@ def main() -> None:
     parser.add_argument("--census", choices=("tree", "walk", "both"), default="both")
     parser.add_argument("--jobs", type=int, default=1, help="Processes running seeds.")
     parser.add_argument(
+        "--min-robots", type=int, default=6,
+        help="A run succeeds when every remnant of at least this many robots re-forms.",
+    )
+    parser.add_argument(
+        "--out", type=argparse.FileType("a"), default=None, metavar="FILE",
+        help="Also append every run's JSON summary to FILE (one line per run).",
+    )
+    parser.add_argument(
         "--case", type=parse_case, action="append", default=None, metavar="SHAPE:DAMAGE"
     )
     parser.add_argument(
@@ -145,7 +163,12 @@ def main() -> None:
             for census in methods:
                 work = [(shape, damage, census, seed, args.max_time, et_options) for seed in seeds]
                 runs = list(pool.map(one_run, work))
-                print(report(shape, damage, census, args.seeds, runs), flush=True)
+                if args.out:
+                    for run in runs:
+                        args.out.write(json.dumps(run) + "\n")
+                    args.out.flush()
+                row = report(shape, damage, census, args.seeds, runs, args.min_robots)
+                print(row, flush=True)
 
 
 if __name__ == "__main__":
