@@ -59,6 +59,7 @@ def test_a_closed_hole_is_recognised() -> None:
 
 def test_the_window_widens_pair_and_balance_tolerances() -> None:
     _, cf = ETParams(pair_tol_mm=4.0, balance_tol_mm=8.0).pack(31, 0, 0)
+    # A window centred on 40 mm.
     assert in_window(41.0, 39.0, 40.0, cf, 1.0)
     assert not in_window(46.0, 43.0, 40.0, cf, 1.0)  # 6 mm off: outside the plain window
     assert in_window(46.0, 43.0, 40.0, cf, 2.0)
@@ -149,7 +150,7 @@ def two_reference_table(second_ring: str, holder_heard: bool):  # type: ignore[n
 
 
 def test_second_ring_pairs_find_the_site_between_them() -> None:
-    from etswarm.algorithm.search import find_site, second_ring_side
+    from etswarm.algorithm.search import find_site, second_ring_side, window_centre
 
     for q in range(6):
         dx = RING[q][0] + RING[(q + 1) % 6][0]
@@ -162,26 +163,29 @@ def test_second_ring_pairs_find_the_site_between_them() -> None:
     for option, expected in [("on", (True, 0, 1)), ("off", (False, 0, 0))]:
         gene, ci, cf, nb, nb_dist = two_reference_table(option, holder_heard=False)
         found, x, y, _ = find_site(
-            0, 10, 0, False, -1, -1, 0, nb, nb_dist, gene, ci, cf, 1.0, 3, *NO_MEMORY
+            0, 10, 0, False, -1, -1, 0, nb, nb_dist, gene, ci, cf, 1.0, 3, *NO_MEMORY,
+            window_centre(cf, 0),
         )
         assert (found, x, y) == expected
 
 
 def test_a_site_whose_reported_neighbour_is_not_heard_is_refused_on_settling() -> None:
-    from etswarm.algorithm.search import find_site, reported_but_unheard
+    from etswarm.algorithm.search import find_site, reported_but_unheard, window_centre
 
     # A reports (1, 1) held, but nobody of (1, 1) is heard: standing on (0, 1) the robot
     # would hear it at about d, so it is somewhere else. Settling (strict), it refuses.
     gene, ci, cf, nb, nb_dist = two_reference_table("on", holder_heard=False)
     assert reported_but_unheard(0, 0, 1, 0, nb)
     found, *_ = find_site(
-        0, 10, 0, True, -1, -1, 0, nb, nb_dist, gene, ci, cf, 1.0, 3, *NO_MEMORY
+        0, 10, 0, True, -1, -1, 0, nb, nb_dist, gene, ci, cf, 1.0, 3, *NO_MEMORY,
+            window_centre(cf, 0),
     )
     assert not found
     # Once the holder of (1, 1) is heard too, the site is confirmed.
     gene, ci, cf, nb, nb_dist = two_reference_table("on", holder_heard=True)
     assert not reported_but_unheard(0, 0, 1, 0, nb)
     found, x, y, _ = find_site(
-        0, 10, 0, True, -1, -1, 0, nb, nb_dist, gene, ci, cf, 1.0, 3, *NO_MEMORY
+        0, 10, 0, True, -1, -1, 0, nb, nb_dist, gene, ci, cf, 1.0, 3, *NO_MEMORY,
+            window_centre(cf, 0),
     )
     assert (found, x, y) == (True, 0, 1)
