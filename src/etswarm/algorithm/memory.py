@@ -112,7 +112,12 @@ SILENT_MAX = 8
 # flickers between the two, so the current reference alone says nothing).
 R_FROM_ID = R_SILENT0 + SILENT_MAX  # the reference before the current one (-1: none)
 R_REF_MOVED = R_FROM_ID + 1  # ticks the searcher moved since its current reference took over
-R_FIELDS = R_REF_MOVED + 1
+# A searcher trapped where the group's edge folds in (between the repository and the shape)
+# steers by the same few robots for ever; it turns round (``search.follow_reference``).
+R_RECENT0 = R_REF_MOVED + 1  # the first of RECENT_REFS fields: its last distinct references
+RECENT_REFS = 4
+R_NEW_REF_MOVED = R_RECENT0 + RECENT_REFS  # ticks moved since a reference not among them
+R_FIELDS = R_NEW_REF_MOVED + 1
 
 PHASE_NORMAL = 0
 PHASE_ELECTING = 1
@@ -167,6 +172,7 @@ def allocate(n_robots: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     ri[:, R_BELOW_SINCE] = -1
     ri[:, R_REF_ID] = -1
     ri[:, R_FROM_ID] = -1
+    ri[:, R_RECENT0 : R_RECENT0 + RECENT_REFS] = -1
     ri[:, R_YLD_ID] = -1
     ri[:, R_PARENT] = -1
     ri[:, R_PEND_EPOCH] = -1

@@ -40,9 +40,11 @@ from etswarm.algorithm.memory import (
     R_FROM_ID,
     R_HAS_TAG,
     R_LOST_SINCE,
+    R_NEW_REF_MOVED,
     R_NN,
     R_ON_SHAPE,
     R_ORBIT,
+    R_RECENT0,
     R_REF_ID,
     R_REF_MOVED,
     R_REF_TREND,
@@ -56,6 +58,7 @@ from etswarm.algorithm.memory import (
     R_YIELD_SINCE,
     R_YLD_ID,
     R_YLD_TREND,
+    RECENT_REFS,
     SUB_FOLLOW,
     SUB_SETTLE,
 )
@@ -122,6 +125,9 @@ CREEP_HOLD_TICKS = 62
 #: takes several seconds of pivoting; at the midpoint of a pair the nearest robot flips
 #: back and forth with every reading, each time for a fraction of that.
 FROM_MOVING_TICKS = 62
+#: A searcher that has moved this long (ticks) without steering by a robot other than its
+#: last ``memory.RECENT_REFS`` distinct references turns round (``follow_reference``).
+TRAPPED_TICKS = 31 * 300
 
 
 @njit
@@ -141,6 +147,15 @@ def begin_search(i, tick, ri):  # type: ignore[no-untyped-def]
     ri[i, R_TOWARD_SINCE] = tick
     ri[i, R_FROM_ID] = -1
     ri[i, R_REF_MOVED] = 0
+    forget_recent_references(i, ri)
+
+
+@njit(inline="always")
+def forget_recent_references(i, ri):  # type: ignore[no-untyped-def]
+    """Clear robot i's list of recent references and its count of ticks since a new one."""
+    for k in range(RECENT_REFS):
+        ri[i, R_RECENT0 + k] = -1
+    ri[i, R_NEW_REF_MOVED] = 0
 
 
 @njit
@@ -149,14 +164,33 @@ def follow_reference(i, ri, nb, slot, moving):  # type: ignore[no-untyped-def]
     motor command was not STOP. When the reference changes, the old one becomes the robot
     it came from (R_FROM_ID), if it steered by it while moving for ``FROM_MOVING_TICKS``;
     a reference that was nearest only for a moment (the two of a pair flicker at its
-    midpoint) leaves R_FROM_ID as it was."""
+    midpoint) leaves R_FROM_ID as it was.
+
+    A searcher that has moved for ``TRAPPED_TICKS`` steering only by its last
+    ``RECENT_REFS`` distinct references is trapped where the group's edge folds in (traced
+    on ``T`` ``kill random=0.1`` seed 1: a searcher circled for 2.5 h between the
+    shape and four Queued robots, which never left because they heard it): it turns round.
+    """
     sid = nb[i, slot, NB_ID]
     if sid != ri[i, R_REF_ID]:
         if ri[i, R_REF_ID] >= 0 and ri[i, R_REF_MOVED] >= FROM_MOVING_TICKS:
             ri[i, R_FROM_ID] = ri[i, R_REF_ID]
         ri[i, R_REF_MOVED] = 0
+        known = False
+        for k in range(RECENT_REFS):
+            known = known or ri[i, R_RECENT0 + k] == sid
+        if not known:
+            for k in range(RECENT_REFS - 1, 0, -1):
+                ri[i, R_RECENT0 + k] = ri[i, R_RECENT0 + k - 1]
+            ri[i, R_RECENT0] = sid
+            ri[i, R_NEW_REF_MOVED] = 0
     if moving:
         ri[i, R_REF_MOVED] += 1
+        ri[i, R_NEW_REF_MOVED] += 1
+    if ri[i, R_NEW_REF_MOVED] >= TRAPPED_TICKS:
+        ri[i, R_ORBIT] = 1 - ri[i, R_ORBIT]
+        ri[i, R_FROM_ID] = -1  # it turned round
+        forget_recent_references(i, ri)
 
 
 @njit(inline="always")
