@@ -25,8 +25,12 @@ and no noise the inboxes are identical to the serial radio's. A sender with more
 RX_MAX receivers in range (only possible when many robots overlap) sends the whole tick
 through a one-thread version of the same procedure.
 
-Motion. Robots split by index into one part per thread; the arithmetic is the serial
-move's. Robots whose collision budget runs out are flagged for the collision phase.
+Motion. Robots split by grid slot into one part per thread (so by place: a thread
+moves the robots of the strips it resolves first in the collision phase, and their
+grid data stays in its core's cache; splitting by index made both cores write every
+cache line of the grid each tick, which cost more than the move itself); the arithmetic
+is the serial move's. Robots whose collision budget runs out are flagged for the
+collision phase.
 
 Collisions. The work list is a flag per grid slot (bit 1 or bit 2, alternating by pass:
 the pass examines slots carrying its bit and sets the other bit on robots it moves). The
@@ -37,7 +41,8 @@ single-threaded one in cells of 4 r + 4 margin): a collision query reaches 2 r +
 centre that lies at most a margin outside its cell, so an examined robot touches only
 slots in its own row and one row up or down, and strips 0, 2, 4, ... can be resolved at
 the same time, then strips 1, 3, 5, ... (threads take the strips of a colour one at a
-time from a shared counter). The smaller cells also make the queries scan fewer robots. A
+time until none is left, the first half of the threads from the top, the others from
+the bottom). The smaller cells also make the queries scan fewer robots. A
 strip examines its flagged slots in slot order with the serial pass's arithmetic. A robot
 pushed out of its slack box earlier in the pass is examined in the next pass (after the
 grid rebuild) instead of now. The order in which overlapping pairs are resolved differs
@@ -111,6 +116,7 @@ PN_SENT, PN_LOST, PN_BAD, PN_DELIVERED, PN_OVERFLOW, PN_STALE, PN_DRIFT = 0, 1, 
 #: entries of ThreadScratch.cstate
 CS_CUR, CS_PASSES, CS_PUSHES, CS_EXAMINED, CS_PENDING, CS_CONT, CS_STRIPS, CS_STALE = range(8)
 CS_STOP, CS_DONE, CS_GRAB0, CS_GRAB1, CS_CTL, CS_BUILD = 8, 9, 10, 11, 12, 13
+CS_FRONT0, CS_FRONT1, CS_BACK0, CS_BACK1 = 14, 15, 16, 17
 #: Slots a thread takes at a time when it builds contact lists during the control phase.
 PREBUILD_CHUNK = 16
 
@@ -130,7 +136,7 @@ class ThreadScratch(NamedTuple):
     ``rx_d`` (N, RX_MAX) float32 mm: receivers and distances of the sender in the same
     row of ``senders``; ``rx_n`` (N,) int32: how many; ``part_n`` (T, 8) int64 per-part
     counts (columns ``PN_*``); ``sync`` (2,) int64 the barrier's state
-    (:mod:`etswarm.sim.sync`); ``cstate`` (14,) int64 the collision phase's state
+    (:mod:`etswarm.sim.sync`); ``cstate`` (18,) int64 the collision phase's state
     between passes and the tick loop's flags (``CS_*``); ``strips`` (2 P + 1,) int64 slot
     bounds of the strips; ``strip_out`` (2 P, 5) int64 per-strip
     results; ``near`` (T, N) uint32, ``near_d2`` (T, N) float64 and ``work`` (T, N) int32
@@ -175,7 +181,7 @@ def make_scratch(n: int, threads: int, key: int) -> ThreadScratch:
         senders=np.zeros(n, dtype=np.int32),
         part_n=np.zeros((t, 8), dtype=np.int64),
         sync=np.zeros(2, dtype=np.int64),
-        cstate=np.zeros(14, dtype=np.int64),
+        cstate=np.zeros(18, dtype=np.int64),
         strips=np.zeros(2 * STRIP_PAIRS + 1, dtype=np.int64),
         strip_out=np.zeros((2 * STRIP_PAIRS, 5), dtype=np.int64),
         near=np.zeros((t, n), dtype=np.uint32),
@@ -567,8 +573,9 @@ def radio_phase_mt(tick, cfg, grid, pos, alive, present, tx_phase, out_on, out_t
 @njit(cache=True)
 def _move_part(lo, hi, tick, cfg, grid, pos, heading, motor, alive, present, speed,
                turn_rate, flags, trig, key, out, at, at_drift):
-    """Move robots lo..hi-1 (the serial move's arithmetic); ``out[at]`` = 1 if one left
-    its slack box, else 0; ``out[at_drift]`` = 1 if one drifted (contact lists void)."""
+    """Move the robots in grid slots lo..hi-1 (the serial move's arithmetic; robots that
+    are not present have no slot); ``out[at]`` = 1 if one left its slack box, else 0;
+    ``out[at_drift]`` = 1 if one drifted (contact lists void)."""
     dt = cfg.dt
     r = cfg.radius
     leg = cfg.leg_angle
@@ -576,19 +583,27 @@ def _move_part(lo, hi, tick, cfg, grid, pos, heading, motor, alive, present, spe
     sin_leg = np.sin(leg)
     walls = cfg.arena > 0.0
     two_pi = 2.0 * np.pi
-    sxb, slot, sref = grid.sxb, grid.slot, grid.sref
+    sxb, sref = grid.sxb, grid.sref
     span = grid.geom[G_CELL] + 2.0 * grid.geom[G_MARGIN]
     drift2 = grid.geom[G_DRIFT] * grid.geom[G_DRIFT]
+    sidx = grid.sidx
+    trig_end = trig[:, 5]  # a row of trig may straddle two cache lines
     stale = False
     drift = False
-    for i in range(lo, hi):
-        if i + PREFETCH_AHEAD < hi:
-            ahead = slot[i + PREFETCH_AHEAD]
-            prefetch(sxb, ahead)
-            prefetch(sref, ahead)
-            prefetch(flags, ahead)
+    for s in range(lo, hi):
+        i = sidx[s]
+        if s + PREFETCH_AHEAD < hi:
+            # the robot a few slots ahead: its rows by index lie scattered
+            ahead = sidx[s + PREFETCH_AHEAD]
+            prefetch(pos, ahead)
+            prefetch(trig, ahead)
+            prefetch(trig_end, ahead)
+            prefetch(heading, ahead)
+            prefetch(speed, ahead)
+            prefetch(turn_rate, ahead)
+            prefetch(motor, ahead)
         m = motor[i]
-        if m == 0 or not alive[i] or not present[i]:
+        if m == 0 or not alive[i]:
             continue
         h = heading[i]
         if trig[i, 0] != h:
@@ -648,7 +663,6 @@ def _move_part(lo, hi, tick, cfg, grid, pos, heading, motor, alive, present, spe
         trig[i, 0] = h_new
         trig[i, 1] = ch
         trig[i, 2] = sh
-        s = slot[i]
         sxb[s, P_X] = x
         sxb[s, P_Y] = y
         bx = sref[s, R_BX]
@@ -667,8 +681,10 @@ def _move_part(lo, hi, tick, cfg, grid, pos, heading, motor, alive, present, spe
 @njit(cache=True)
 def move_part(p, tick, cfg, grid, pos, heading, motor, alive, present, speed, turn_rate,
               flags, trig, scr):
-    """Move robots n p / T .. n (p + 1) / T - 1; part_n[p, PN_STALE] = left a box."""
-    n = pos.shape[0]
+    """Move the robots in slots n p / T .. n (p + 1) / T - 1 of the n filed ones (by
+    slot, so that a thread moves the robots of the strips it resolves first in the
+    collision phase: see :func:`collide_strips_grab`); part_n[p, PN_STALE] = left a box."""
+    n = grid.start[grid.dims[0] * grid.dims[1]]
     parts = scr.parts[0]
     _move_part(n * p // parts, n * (p + 1) // parts, tick, cfg, grid, pos, heading, motor,
                alive, present, speed, turn_rate, flags, trig, scr.key[0], scr.part_n[p],
@@ -898,6 +914,7 @@ def collide_begin(grid, scr):
     cs[CS_STRIPS] = strip_bounds(grid, scr.strips)
     cs[CS_GRAB0] = 0
     cs[CS_GRAB1] = 0
+    cs[CS_FRONT0:CS_BACK1 + 1] = 0
     if grid.state[S_DRIFTED] != 0:
         new_epoch(grid)
 
@@ -929,22 +946,39 @@ def collide_strips(p, parts, colour, cfg, grid, pos, motor, flags, scr):
                        scr.strip_out[k])
 
 
+@njit(cache=True, inline="always")
+def _claim_strip(cs, colour, n_col, from_back):
+    """The next unclaimed strip of ``colour`` (0 .. n_col - 1) counted from the front or
+    the back, or -1 when all are claimed: every strip is claimed exactly once, the
+    front claims 0, 1, ... and the back claims n_col - 1, n_col - 2, ..."""
+    if atomic_add(cs, CS_GRAB0 + colour, 1) >= n_col:
+        return -1
+    if from_back:
+        return n_col - 1 - atomic_add(cs, CS_BACK0 + colour, 1)
+    return atomic_add(cs, CS_FRONT0 + colour, 1)
+
+
 @njit(cache=True)
 def collide_strips_grab(p, colour, cfg, grid, pos, motor, flags, scr):
-    """Thread ``p`` resolves strips of ``colour`` taken one at a time from a shared
-    counter until none is left (the threads that finish first take more)."""
+    """Thread ``p`` resolves strips of ``colour`` taken one at a time until none is
+    left (the threads that finish first take more). The first half of the threads take
+    strips from the front, the others from the back, so a thread mostly resolves the
+    strips whose robots it moved (:func:`move_part`) and their data stays in its core's
+    cache."""
     cs = scr.cstate
     n_strips = cs[CS_STRIPS]
     cur_bit = cs[CS_CUR]
     n_col = (n_strips + 1 - colour) // 2
     ok = _lists_ok(colour, cs, scr.strip_out)
-    q = atomic_add(cs, CS_GRAB0 + colour, 1)
-    while q < n_col:
+    from_back = 2 * p >= scr.parts[0]
+    near, near_d2, work, strips, strip_out = scr.near[p], scr.near_d2[p], scr.work[p], \
+        scr.strips, scr.strip_out
+    q = _claim_strip(cs, colour, n_col, from_back)
+    while q >= 0:
         k = 2 * q + colour
-        _collide_strip(scr.strips[k], scr.strips[k + 1], cur_bit, 3 - cur_bit, ok, cfg, grid,
-                       pos, motor, flags, scr.near[p], scr.near_d2[p], scr.work[p],
-                       scr.strip_out[k])
-        q = atomic_add(cs, CS_GRAB0 + colour, 1)
+        _collide_strip(strips[k], strips[k + 1], cur_bit, 3 - cur_bit, ok, cfg, grid,
+                       pos, motor, flags, near, near_d2, work, strip_out[k])
+        q = _claim_strip(cs, colour, n_col, from_back)
 
 
 @njit(cache=True)
@@ -983,6 +1017,7 @@ def collide_after_pass(cfg, grid, pos, present, flags, scr):
         cs[CS_STRIPS] = strip_bounds(grid, scr.strips)
         cs[CS_GRAB0] = 0
         cs[CS_GRAB1] = 0
+        cs[CS_FRONT0:CS_BACK1 + 1] = 0
 
 
 @njit(cache=True)
@@ -1016,8 +1051,8 @@ def no_part_step(lo, hi, tick, alive, in_count, in_type, in_data, in_dist, motor
 
 @njit(cache=True, inline="always")
 def part_bounds(p, n, scr):
-    """Robots ``lo .. hi - 1`` of part ``p`` (by index: the radio's receivers, the move's
-    and the controller part's robots)."""
+    """Robots ``lo .. hi - 1`` of part ``p`` (by index: the radio's receivers and the
+    controller part's robots)."""
     parts = scr.parts[0]
     return n * p // parts, n * (p + 1) // parts
 
