@@ -13,17 +13,19 @@ the receiver and a salt naming the draw (loss, distance noise, speed noise, head
 noise). Uniforms take the top 53 bits; normals use Box-Muller on two such uniforms.
 The controller still gets the sequential controller stream (it runs on one thread).
 
-Radio. Pass 1 (one part per thread, by sender index): each sender of this tick lists its
-receivers (slot order, as the serial radio visits them) with their measured distance,
-after the loss draw, in a (N, RX_MAX) buffer row of its own (rows of one part's senders
-are consecutive), grouped by the part the receiver belongs to (slot order kept within
-a group), with the sender's message copied. Pass 2 (one part per thread, by receiver
-index): each thread walks all senders in index order and files the copies of its own
-group of each row. So every inbox holds
-its copies in sender order, capped at K exactly as the serial radio does; with no loss
-and no noise the inboxes are identical to the serial radio's. A sender with more than
-RX_MAX receivers in range (only possible when many robots overlap) sends the whole tick
-through a one-thread version of the same procedure.
+Radio. Pass 1 (one part per thread, by place: the senders filed in the part's slots,
+taken in index order): each sender of this tick has its message copied and lists its
+receivers (slot order) after the loss draw, appending (sender, receiver, measured
+distance) to one stream per receiving part (robots by index, as the controller
+parts). Pass 2 (one part per thread, by receiver index): each thread merges the
+streams to its part from all parts into sender order (each stream is in sender order
+and parts' senders are disjoint) and files the copies. So every inbox holds its copies
+in sender order, capped at K exactly as the serial radio does; with no loss and no
+noise the inboxes are identical to the serial radio's. A tick whose copies would
+overflow a stream (only possible when many robots overlap) is sent through a
+one-thread version of the same procedure. Working by place keeps the grid rows a
+thread reads in the cache of the core that moved those robots; only the copies cross
+between cores, in compact streams.
 
 Motion. Robots split by grid slot into one part per thread (so by place: a thread
 moves the robots of the strips it resolves first in the collision phase, and their
@@ -84,6 +86,7 @@ from etswarm.sim.neighbours import (
     R_BY,
     S_DRIFTED,
     S_EPOCH,
+    aligned_rows,
     cell_range,
     contact_list_from,
     drifted,
@@ -97,8 +100,9 @@ from etswarm.sim.world import PAYLOAD_BYTES
 
 #: Strips per colour in the collision phase (strips = 2 * STRIP_PAIRS at most).
 STRIP_PAIRS = 8
-#: Receivers one sender can list per tick in the threaded radio's buffer.
-RX_MAX = 48
+#: Copies the threaded radio's stream from one part to another holds per robot of the
+#: sending part (a tick that would send more is filed by the one-thread radio).
+RX_PER_ROBOT = 16
 
 _C1 = np.uint64(0x9E3779B97F4A7C15)
 _C2 = np.uint64(0xD1B54A32D192ED03)
@@ -129,32 +133,35 @@ SALT_SPEED_A, SALT_SPEED_B, SALT_HEAD_A, SALT_HEAD_B = 4, 5, 6, 7
 
 
 class ThreadScratch(NamedTuple):
-    """Work arrays of the threaded phases (N robots, T threads, P = STRIP_PAIRS).
+    """Work arrays of the threaded phases (N robots, T threads, P = STRIP_PAIRS,
+    W = 8 * ceil(T / 8) so that a row of W int64 fills whole cache lines, C =
+    RX_PER_ROBOT * (N // T + 1)).
 
-    ``key`` (1,) uint64 hash key; ``parts`` (1,) int64 T; ``senders`` (N,) int32: this
-    tick's senders, part p's from row N p / T on; ``rx_j`` (N, RX_MAX) int32 and
-    ``rx_d`` (N, RX_MAX) float32 mm: receivers and distances of the sender in the same
-    row of ``senders``; ``rx_n`` (N,) int32: how many; ``part_n`` (T, 8) int64 per-part
-    counts (columns ``PN_*``); ``sync`` (2,) int64 the barrier's state
-    (:mod:`etswarm.sim.sync`); ``cstate`` (18,) int64 the collision phase's state
-    between passes and the tick loop's flags (``CS_*``); ``strips`` (2 P + 1,) int64 slot
-    bounds of the strips; ``strip_out`` (2 P, 5) int64 per-strip
-    results; ``near`` (T, N) uint32, ``near_d2`` (T, N) float64 and ``work`` (T, N) int32
-    per-thread scratch of the collision phase (work, near_d2: also of the radio);
-    ``robot_flag`` (N,) uint8 flags by robot while the grid is rebuilt; ``tx_type`` (N,)
-    uint8 and ``tx_data`` (N, 9) uint8: the message of the sender in the same row of
-    ``senders``, copied in pass 1 (so a controller part may rewrite ``out_*`` of its
-    robots while other threads still file copies); ``rx_cut`` (N, T + 1) int32: where
-    each part's receivers begin in the row (pass 1 groups them by part, so a thread
-    reads only its own).
+    ``key`` (1,) uint64 hash key; ``parts`` (1,) int64 T; ``rec_i``, ``rec_j`` (T, T, C)
+    int32 and ``rec_d`` (T, T, C) float32 mm: the radio's streams, [p, q] holding the
+    copies that part p's senders send to part q's receivers (sender, receiver,
+    measured distance) in sender order; ``rec_n`` (T, W) int64: their lengths
+    (row p written by part p); ``rec_at`` (T, W) int64: part q's read positions in
+    row q; ``part_n`` (T, 8) int64 per-part counts (columns ``PN_*``); ``sync`` (2,)
+    int64 the barrier's state (:mod:`etswarm.sim.sync`); ``cstate`` (18,) int64 the
+    collision phase's state between passes and the tick loop's flags (``CS_*``);
+    ``strips`` (2 P + 1,) int64 slot bounds of the strips; ``strip_out`` (2 P, 5) int64
+    per-strip results; ``near`` (T, N) uint32, ``near_d2`` (T, N) float64 and ``work``
+    (T, N) int32 per-thread scratch of the collision phase (work, near_d2: also of the
+    radio); ``robot_flag`` (N,) uint8 flags by robot while the grid is rebuilt;
+    ``tx_type`` (N,) uint8 and ``tx_data`` (N, 9) uint8: this tick's messages by
+    sender, copied in pass 1 (so a controller part may rewrite ``out_*`` of its robots
+    while other threads still file copies). Rows of T or W int64 that different
+    threads write start on cache-line boundaries.
     """
 
     key: np.ndarray
     parts: np.ndarray
-    rx_j: np.ndarray
-    rx_d: np.ndarray
-    rx_n: np.ndarray
-    senders: np.ndarray
+    rec_i: np.ndarray
+    rec_j: np.ndarray
+    rec_d: np.ndarray
+    rec_n: np.ndarray
+    rec_at: np.ndarray
     part_n: np.ndarray
     sync: np.ndarray
     cstate: np.ndarray
@@ -166,20 +173,25 @@ class ThreadScratch(NamedTuple):
     robot_flag: np.ndarray
     tx_type: np.ndarray
     tx_data: np.ndarray
-    rx_cut: np.ndarray
 
 
-def make_scratch(n: int, threads: int, key: int) -> ThreadScratch:
-    """Work arrays for ``n`` robots on ``threads`` threads with hash key ``key``."""
+def make_scratch(n: int, threads: int, key: int,
+                 rx_per_robot: int = 0) -> ThreadScratch:
+    """Work arrays for ``n`` robots on ``threads`` threads with hash key ``key``; the
+    radio's streams hold ``rx_per_robot`` (default RX_PER_ROBOT) copies per robot of
+    the sending part."""
     t = max(int(threads), 1)
+    w = 8 * ((t + 7) // 8)
+    room = (rx_per_robot or RX_PER_ROBOT) * (n // t + 1)
     return ThreadScratch(
         key=np.array([key], dtype=np.uint64),
         parts=np.array([t], dtype=np.int64),
-        rx_j=np.zeros((n, RX_MAX), dtype=np.int32),
-        rx_d=np.zeros((n, RX_MAX), dtype=np.float32),
-        rx_n=np.zeros(n, dtype=np.int32),
-        senders=np.zeros(n, dtype=np.int32),
-        part_n=np.zeros((t, 8), dtype=np.int64),
+        rec_i=np.zeros((t, t, room), dtype=np.int32),
+        rec_j=np.zeros((t, t, room), dtype=np.int32),
+        rec_d=np.zeros((t, t, room), dtype=np.float32),
+        rec_n=aligned_rows(t, w, np.int64),
+        rec_at=aligned_rows(t, w, np.int64),
+        part_n=aligned_rows(t, 8, np.int64),
         sync=np.zeros(2, dtype=np.int64),
         cstate=np.zeros(18, dtype=np.int64),
         strips=np.zeros(2 * STRIP_PAIRS + 1, dtype=np.int64),
@@ -190,7 +202,6 @@ def make_scratch(n: int, threads: int, key: int) -> ThreadScratch:
         robot_flag=np.zeros(n, dtype=np.uint8),
         tx_type=np.zeros(n, dtype=np.uint8),
         tx_data=np.zeros((n, 9), dtype=np.uint8),
-        rx_cut=np.zeros((n, t + 1), dtype=np.int32),
     )
 
 
@@ -278,27 +289,13 @@ def grid_sync_flags(grid, pos, present, flags, robot_flag):
 
 
 @njit(cache=True)
-def _list_receivers(i, row_out, x, y, tick, key, cfg, grid, alive, rx_j, rx_d, row_cap,
-                    cand_s, cand_d2):
-    """Receivers of sender i at (x, y) (slot order) into rx_j[row_out], rx_d[row_out];
-    returns (listed, lost), listed = -1 when more than ``row_cap`` would be listed.
-    ``cand_s`` (N,) int32 and ``cand_d2`` (N,) float64: scratch for the slots in range."""
-    rng_r = cfg.comm_range
-    return _receivers_from(i, row_out, x, y, tick, key, grid.start, grid.sxb, grid.sidx,
-                           grid.geom[G_OX], grid.geom[G_OY], grid.geom[G_INV], grid.dims[0],
-                           grid.dims[1], rng_r + grid.geom[G_MARGIN], rng_r * rng_r,
-                           cfg.loss, cfg.dist_noise, alive, rx_j, rx_d, row_cap, cand_s,
-                           cand_d2)
-
-
-@njit(cache=True)
-def _receivers_from(i, row_out, x, y, tick, key, start, sxb, sidx, ox, oy, inv, nx, ny,
-                    reach, r2, loss, noise, alive, rx_j, rx_d, row_cap, cand_s, cand_d2):
-    """:func:`_list_receivers` from the grid's arrays and geometry (hot loops call this:
-    no field of a tuple is read per sender, see the numba note in docs/simulator.md)."""
+def _in_range(x, y, start, sxb, ox, oy, inv, nx, ny, reach, r2, cand_s, cand_d2):
+    """The filed slots within range of (x, y) (squared range ``r2`` mm^2; ``reach``: range
+    plus the grid's margin) in slot order into ``cand_s`` (N,) int32 with their squared
+    distances in ``cand_d2`` (N,) float64; returns how many."""
     cx0, cx1 = cell_range(x, reach, ox, inv, nx)
     cy0, cy1 = cell_range(y, reach, oy, inv, ny)
-    # the slots in range in slot order, kept without branching on distances
+    # kept without branching on distances
     n_in = 0
     for cy in range(cy0, cy1 + 1):
         row = cy * nx
@@ -309,28 +306,21 @@ def _receivers_from(i, row_out, x, y, tick, key, start, sxb, sidx, ox, oy, inv, 
             cand_s[n_in] = s
             cand_d2[n_in] = d2
             n_in += d2 <= r2
-    listed = 0
-    lost = 0
-    for q in range(n_in):
-        d2 = cand_d2[q]
-        j = sidx[cand_s[q]]
-        if j == i or not alive[j]:
-            continue
-        if loss > 0.0 and hash_unit(key, tick, i, j * 8 + SALT_LOSS) <= loss:
-            lost += 1
-            continue
-        if listed >= row_cap:
-            return -1, lost
-        d = np.sqrt(d2)
-        if noise > 0.0:
-            d += noise * hash_normal(key, tick, i, j * 8 + SALT_NOISE_A,
-                                     j * 8 + SALT_NOISE_B)
-            if d < 0.0:
-                d = 0.0
-        rx_j[row_out, listed] = j
-        rx_d[row_out, listed] = d
-        listed += 1
-    return listed, lost
+    return n_in
+
+
+@njit(cache=True, inline="always")
+def _heard(i, j, d2, tick, key, loss, noise):
+    """The distance (mm) receiver j measures to sender i at squared distance d2, or -1.0
+    when the copy is lost (hashed draws, see module doc)."""
+    if loss > 0.0 and hash_unit(key, tick, i, j * 8 + SALT_LOSS) <= loss:
+        return -1.0
+    d = np.sqrt(d2)
+    if noise > 0.0:
+        d += noise * hash_normal(key, tick, i, j * 8 + SALT_NOISE_A, j * 8 + SALT_NOISE_B)
+        if d < 0.0:
+            d = 0.0
+    return d
 
 
 @njit(cache=True)
@@ -340,19 +330,37 @@ def _is_sender(i, phase, tx_phase, out_on, alive, present):
     return (tx_phase[i] == phase) & out_on[i] & alive[i] & present[i]
 
 
+@njit(cache=True, inline="always")
+def _part_of(j, n, parts):
+    """The part q whose robots n q / T .. n (q + 1) / T - 1 include robot j."""
+    q = j * parts // n
+    while q + 1 < parts and j >= n * (q + 1) // parts:
+        q += 1
+    while q > 0 and j < n * q // parts:
+        q -= 1
+    return q
+
+
 @njit(cache=True)
 def _radio_one_thread(tick, cfg, grid, pos, alive, present, tx_phase, out_on, out_type,
                       out_data, in_count, in_type, in_data, in_dist, counters, scr):
-    """The threaded radio's result computed on one thread without the per-sender cap
-    (used when a sender has more than RX_MAX receivers)."""
+    """The threaded radio's result computed on one thread without the streams' capacity
+    (used when a stream would overflow)."""
     n = pos.shape[0]
     cap = in_type.shape[1]
     key = scr.key[0]
     phase = tick % cfg.tx_period
+    start, sxb, sidx, slot = grid.start, grid.sxb, grid.sidx, grid.slot
+    ox = grid.geom[G_OX]
+    oy = grid.geom[G_OY]
+    inv = grid.geom[G_INV]
+    nx = grid.dims[0]
+    ny = grid.dims[1]
+    rng_r = cfg.comm_range
+    reach = rng_r + grid.geom[G_MARGIN]
+    cand_s = scr.work[0]
+    cand_d2 = scr.near_d2[0]
     in_count[:] = 0
-    big = n  # a row of rx_j is RX_MAX long: list one sender at a time into a big row
-    row_j = np.empty((1, big), dtype=np.int32)
-    row_d = np.empty((1, big), dtype=np.float32)
     sent = 0
     delivered = 0
     lost = 0
@@ -361,19 +369,24 @@ def _radio_one_thread(tick, cfg, grid, pos, alive, present, tx_phase, out_on, ou
         if not _is_sender(i, phase, tx_phase, out_on, alive, present):
             continue
         sent += 1
-        listed, n_lost = _list_receivers(i, 0, pos[i, 0], pos[i, 1], tick, key, cfg, grid,
-                                         alive, row_j, row_d, big, scr.work[0],
-                                         scr.near_d2[0])
-        lost += n_lost
-        for k in range(listed):
-            j = row_j[0, k]
+        s = slot[i]
+        n_in = _in_range(sxb[s, P_X], sxb[s, P_Y], start, sxb, ox, oy, inv, nx, ny, reach,
+                         rng_r * rng_r, cand_s, cand_d2)
+        for q in range(n_in):
+            j = sidx[cand_s[q]]
+            if j == i or not alive[j]:
+                continue
+            d = _heard(i, j, cand_d2[q], tick, key, cfg.loss, cfg.dist_noise)
+            if d < 0.0:
+                lost += 1
+                continue
             c = in_count[j]
             if c >= cap:
                 overflow += 1
                 continue
             in_type[j, c] = out_type[i]
             in_data[j, c, :] = out_data[i, :]
-            in_dist[j, c] = row_d[0, k]
+            in_dist[j, c] = np.float32(d)
             in_count[j] = c + 1
             delivered += 1
     counters[0] += sent
@@ -383,41 +396,18 @@ def _radio_one_thread(tick, cfg, grid, pos, alive, present, tx_phase, out_on, ou
 
 
 @njit(cache=True)
-def _split_by_part(m, listed, n, parts, rx_j, rx_d, rx_cut, tmp_j, tmp_d):
-    """Reorder row ``m``'s ``listed`` receivers by part (robots n q / T .. n (q + 1) / T
-    - 1), keeping their order within a part, and write the part boundaries to
-    ``rx_cut[m, :parts + 1]``; ``tmp_j``, ``tmp_d``: scratch of at least ``listed``."""
-    rx_cut[m, 0] = 0
-    if parts == 1:
-        rx_cut[m, 1] = listed
-        return
-    for k in range(listed):
-        tmp_j[k] = rx_j[m, k]
-        tmp_d[k] = rx_d[m, k]
-    at = 0
-    for q in range(parts):
-        lo = n * q // parts
-        hi = n * (q + 1) // parts
-        for k in range(listed):
-            j = tmp_j[k]
-            rx_j[m, at] = j
-            rx_d[m, at] = tmp_d[k]
-            at += (j >= lo) & (j < hi)
-        rx_cut[m, q + 1] = at
-
-
-@njit(cache=True)
-def _radio_list_part(lo, hi, tick, cfg, grid, pos, alive, present, tx_phase, out_on,
-                     out_type, out_data, scr, p):
-    """Pass 1 for senders lo..hi-1: list receivers and copy the message; part counts into
-    scr.part_n[p]."""
+def _radio_list(slo, shi, p, tick, cfg, grid, alive, present, tx_phase, out_on, out_type,
+                out_data, scr):
+    """Pass 1 for the senders filed in slots slo..shi-1, in index order: copy each
+    message and append every copy that is not lost, as (sender, receiver, distance),
+    to the stream of the part the receiver belongs to."""
+    n = alive.shape[0]
+    parts = scr.parts[0]
     phase = tick % cfg.tx_period
     key = scr.key[0]
-    n = pos.shape[0]
-    parts = scr.parts[0]
     # the grid's and the scratch's arrays in locals: a tuple field read in the loop
     # would cost numba's reference counting an atomic increment and decrement
-    start, sxb, sidx = grid.start, grid.sxb, grid.sidx
+    start, sxb, sidx, slot = grid.start, grid.sxb, grid.sidx, grid.slot
     ox = grid.geom[G_OX]
     oy = grid.geom[G_OY]
     inv = grid.geom[G_INV]
@@ -428,84 +418,112 @@ def _radio_list_part(lo, hi, tick, cfg, grid, pos, alive, present, tx_phase, out
     r2 = rng_r * rng_r
     loss = cfg.loss
     noise = cfg.dist_noise
-    senders, tx_type, tx_data = scr.senders, scr.tx_type, scr.tx_data
-    rx_j, rx_d, rx_n, rx_cut = scr.rx_j, scr.rx_d, scr.rx_n, scr.rx_cut
-    work = scr.work[p]
-    near_d2 = scr.near_d2[p]
+    tx_type, tx_data = scr.tx_type, scr.tx_data
+    rec_i, rec_j, rec_d, rec_n = scr.rec_i[p], scr.rec_j[p], scr.rec_d[p], scr.rec_n[p]
+    room = rec_i.shape[1]
+    cand_s = scr.work[p]
+    cand_d2 = scr.near_d2[p]
     n_bytes = out_data.shape[1]
-    m = lo
+    for q in range(parts):
+        rec_n[q] = 0
+    sent = 0
     lost = 0
     bad = 0
-    for i in range(lo, hi):
-        if not _is_sender(i, phase, tx_phase, out_on, alive, present):
+    for i in range(n):
+        s = slot[i]
+        if s < slo or s >= shi or not _is_sender(i, phase, tx_phase, out_on, alive, present):
             continue
-        senders[m] = i
-        tx_type[m] = out_type[i]
+        sent += 1
+        tx_type[i] = out_type[i]
         for b in range(n_bytes):
-            tx_data[m, b] = out_data[i, b]
-        listed, n_lost = _receivers_from(i, m, pos[i, 0], pos[i, 1], tick, key, start, sxb,
-                                         sidx, ox, oy, inv, nx, ny, reach, r2, loss, noise,
-                                         alive, rx_j, rx_d, RX_MAX, work, near_d2)
-        lost += n_lost
-        if listed < 0:
-            bad = 1
-            listed = 0
-        rx_n[m] = listed
-        _split_by_part(m, listed, n, parts, rx_j, rx_d, rx_cut, work, near_d2)
-        m += 1
-    scr.part_n[p, PN_SENT] = m - lo
+            tx_data[i, b] = out_data[i, b]
+        n_in = _in_range(sxb[s, P_X], sxb[s, P_Y], start, sxb, ox, oy, inv, nx, ny, reach,
+                         r2, cand_s, cand_d2)
+        for c in range(n_in):
+            j = sidx[cand_s[c]]
+            if j == i or not alive[j]:
+                continue
+            d = _heard(i, j, cand_d2[c], tick, key, loss, noise)
+            if d < 0.0:
+                lost += 1
+                continue
+            q = _part_of(j, n, parts)
+            k = rec_n[q]
+            if k >= room:
+                bad = 1
+                continue
+            rec_i[q, k] = i
+            rec_j[q, k] = j
+            rec_d[q, k] = d
+            rec_n[q] = k + 1
+    scr.part_n[p, PN_SENT] = sent
     scr.part_n[p, PN_LOST] = lost
     scr.part_n[p, PN_BAD] = bad
 
 
 @njit(cache=True)
-def _radio_file_part(lo, hi, n, parts, in_count, in_type, in_data, in_dist, scr, p):
-    """Pass 2 for receivers lo..hi-1: file every listed copy in sender order (the
-    messages as pass 1 copied them)."""
+def _radio_file(lo, hi, q, in_count, in_type, in_data, in_dist, scr):
+    """Pass 2 for receivers lo..hi-1 (part q): file the copies of every part's stream to
+    part q, merged into sender order (each stream is in sender order), with the
+    messages as pass 1 copied them."""
+    parts = scr.parts[0]
     cap = in_type.shape[1]
-    rx_cut, rx_j, rx_d = scr.rx_cut, scr.rx_j, scr.rx_d
+    rec_i, rec_j, rec_d, rec_n = scr.rec_i, scr.rec_j, scr.rec_d, scr.rec_n
     tx_type, tx_data, part_n = scr.tx_type, scr.tx_data, scr.part_n
+    at = scr.rec_at[q]
     n_bytes = tx_data.shape[1]
     in_count[lo:hi] = 0
+    for p in range(parts):
+        at[p] = 0
     delivered = 0
     overflow = 0
-    for q in range(parts):
-        first = n * q // parts
-        last = first + part_n[q, PN_SENT]
-        for m in range(first, last):
-            mtype = tx_type[m]
-            if m + 1 < last:
-                # the next sender's receivers here: ask for their inbox rows (scattered)
-                for k in range(rx_cut[m + 1, p], rx_cut[m + 1, p + 1]):
-                    j = rx_j[m + 1, k]
-                    prefetch(in_count, j)
-                    prefetch(in_type, j)
-                    prefetch(in_data, j)
-                    prefetch(in_dist, j)
-            # this part's receivers of sender row m (pass 1 put them together)
-            for k in range(rx_cut[m, p], rx_cut[m, p + 1]):
-                j = rx_j[m, k]
-                c = in_count[j]
-                if c >= cap:
-                    overflow += 1
-                    continue
-                in_type[j, c] = mtype
-                if n_bytes == PAYLOAD_BYTES:  # a constant count: one unrolled copy
-                    for b in range(PAYLOAD_BYTES):
-                        in_data[j, c, b] = tx_data[m, b]
-                else:
-                    for b in range(n_bytes):
-                        in_data[j, c, b] = tx_data[m, b]
-                in_dist[j, c] = rx_d[m, k]
-                in_count[j] = c + 1
-                delivered += 1
-    part_n[p, PN_DELIVERED] = delivered
-    part_n[p, PN_OVERFLOW] = overflow
+    while True:
+        # the stream whose next copy has the lowest sender
+        src = -1
+        first = np.int64(0)
+        for p in range(parts):
+            k = at[p]
+            if k < rec_n[p, q] and (src < 0 or rec_i[p, q, k] < first):
+                src = p
+                first = rec_i[p, q, k]
+        if src < 0:
+            break
+        # that sender's copies (together in its stream)
+        k = at[src]
+        end = rec_n[src, q]
+        mtype = tx_type[first]
+        while k < end and rec_i[src, q, k] == first:
+            if k + PREFETCH_AHEAD < end:
+                # the inbox rows of a copy a few places ahead (scattered)
+                ahead = rec_j[src, q, k + PREFETCH_AHEAD]
+                prefetch(in_count, ahead)
+                prefetch(in_type, ahead)
+                prefetch(in_data, ahead)
+                prefetch(in_dist, ahead)
+            j = rec_j[src, q, k]
+            k += 1
+            c = in_count[j]
+            if c >= cap:
+                overflow += 1
+                continue
+            in_type[j, c] = mtype
+            if n_bytes == PAYLOAD_BYTES:  # a constant count: one unrolled copy
+                for b in range(PAYLOAD_BYTES):
+                    in_data[j, c, b] = tx_data[first, b]
+            else:
+                for b in range(n_bytes):
+                    in_data[j, c, b] = tx_data[first, b]
+            in_dist[j, c] = rec_d[src, q, k - 1]
+            in_count[j] = c + 1
+            delivered += 1
+        at[src] = k
+    part_n[q, PN_DELIVERED] = delivered
+    part_n[q, PN_OVERFLOW] = overflow
 
 
 @njit(cache=True)
 def radio_bad(scr):
-    """True when a sender of this tick had more receivers than its buffer row holds."""
+    """True when a stream of this tick ran out of room (the one-thread radio files it)."""
     bad = 0
     for p in range(scr.parts[0]):
         bad += scr.part_n[p, PN_BAD]
@@ -515,8 +533,9 @@ def radio_bad(scr):
 @njit(cache=True)
 def radio_file_part(p, tick, cfg, grid, pos, alive, present, tx_phase, out_on, out_type,
                     out_data, in_count, in_type, in_data, in_dist, counters, scr):
-    """Pass 2 of part ``p`` after every part's pass 1; if a buffer row overflowed, part 0
-    runs the whole tick's radio on its own instead (and counts it)."""
+    """Pass 2 of part ``p`` (receivers n p / T .. n (p + 1) / T - 1) after every part's
+    pass 1; if a stream overflowed, part 0 runs the whole tick's radio on its own
+    instead (and counts it)."""
     n = pos.shape[0]
     parts = scr.parts[0]
     if radio_bad(scr):
@@ -525,8 +544,8 @@ def radio_file_part(p, tick, cfg, grid, pos, alive, present, tx_phase, out_on, o
                               out_type, out_data, in_count, in_type, in_data, in_dist,
                               counters, scr)
         return
-    _radio_file_part(n * p // parts, n * (p + 1) // parts, n, parts, in_count, in_type,
-                     in_data, in_dist, scr, p)
+    _radio_file(n * p // parts, n * (p + 1) // parts, p, in_count, in_type, in_data,
+                in_dist, scr)
 
 
 @njit(cache=True)
@@ -545,11 +564,12 @@ def radio_count(counters, scr):
 @njit(cache=True)
 def radio_list_part(p, tick, cfg, grid, pos, alive, present, tx_phase, out_on, out_type,
                     out_data, scr):
-    """Pass 1 of part ``p`` (senders n p / T .. n (p + 1) / T - 1)."""
-    n = pos.shape[0]
+    """Pass 1 of part ``p``: the senders filed in slots n p / T .. n (p + 1) / T - 1 of
+    the n filed robots (by place, as :func:`move_part`)."""
+    n_filed = grid.start[grid.dims[0] * grid.dims[1]]
     parts = scr.parts[0]
-    _radio_list_part(n * p // parts, n * (p + 1) // parts, tick, cfg, grid, pos, alive,
-                     present, tx_phase, out_on, out_type, out_data, scr, p)
+    _radio_list(n_filed * p // parts, n_filed * (p + 1) // parts, p, tick, cfg, grid,
+                alive, present, tx_phase, out_on, out_type, out_data, scr)
 
 
 @njit(cache=True)
