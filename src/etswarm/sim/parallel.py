@@ -44,7 +44,8 @@ centre that lies at most a margin outside its cell, so an examined robot touches
 slots in its own row and one row up or down, and strips 0, 2, 4, ... can be resolved at
 the same time, then strips 1, 3, 5, ... (threads take the strips of a colour one at a
 time until none is left, the first half of the threads from the top, the others from
-the bottom). The smaller cells also make the queries scan fewer robots. A
+the bottom; a strip of colour 1 starts as soon as the two strips next to it are done,
+without waiting for the whole colour). The smaller cells also make the queries scan fewer robots. A
 strip examines its flagged slots in slot order with the serial pass's arithmetic. A robot
 pushed out of its slack box earlier in the pass is examined in the next pass (after the
 grid rebuild) instead of now. The order in which overlapping pairs are resolved differs
@@ -53,7 +54,7 @@ physics (overlap shares, still-robot grip, slop, pass limit, walls) is the same.
 
 Where it runs. The threaded tick loop (:mod:`etswarm.sim.kernel`) calls the per-part
 functions (``radio_list_part``, ``radio_file_part``, ``move_part``,
-``collide_strips_grab``, ...) on every thread and the one-thread ones (``radio_count``,
+``collide_pass_grab``, ...) on every thread and the one-thread ones (``radio_count``,
 ``move_finish``, ``collide_begin``, ``collide_after_pass``, ``collide_end``) on one.
 ``radio_phase_mt``, ``move_phase_mt`` and ``collide_phase_mt`` run the same parts one
 after another on the calling thread (the slow path, for Python controllers); they give
@@ -95,7 +96,7 @@ from etswarm.sim.neighbours import (
     new_epoch,
 )
 from etswarm.sim.prefetch import prefetch
-from etswarm.sim.sync import atomic_add, atomic_load
+from etswarm.sim.sync import atomic_add, atomic_load, atomic_store, wait_for
 from etswarm.sim.world import PAYLOAD_BYTES
 
 #: Strips per colour in the collision phase (strips = 2 * STRIP_PAIRS at most).
@@ -120,7 +121,7 @@ PN_SENT, PN_LOST, PN_BAD, PN_DELIVERED, PN_OVERFLOW, PN_STALE, PN_DRIFT = 0, 1, 
 #: entries of ThreadScratch.cstate
 CS_CUR, CS_PASSES, CS_PUSHES, CS_EXAMINED, CS_PENDING, CS_CONT, CS_STRIPS, CS_STALE = range(8)
 CS_STOP, CS_DONE, CS_GRAB0, CS_GRAB1, CS_CTL, CS_BUILD = 8, 9, 10, 11, 12, 13
-CS_FRONT0, CS_FRONT1, CS_BACK0, CS_BACK1 = 14, 15, 16, 17
+CS_FRONT0, CS_FRONT1, CS_BACK0, CS_BACK1, CS_PASSNO = 14, 15, 16, 17, 18
 #: Slots a thread takes at a time when it builds contact lists during the control phase.
 PREBUILD_CHUNK = 16
 
@@ -143,11 +144,13 @@ class ThreadScratch(NamedTuple):
     measured distance) in sender order; ``rec_n`` (T, W) int64: their lengths
     (row p written by part p); ``rec_at`` (T, W) int64: part q's read positions in
     row q; ``part_n`` (T, 8) int64 per-part counts (columns ``PN_*``); ``sync`` (2,)
-    int64 the barrier's state (:mod:`etswarm.sim.sync`); ``cstate`` (18,) int64 the
+    int64 the barrier's state (:mod:`etswarm.sim.sync`); ``cstate`` (24,) int64 the
     collision phase's state between passes and the tick loop's flags (``CS_*``);
     ``strips`` (2 P + 1,) int64 slot bounds of the strips; ``strip_out`` (2 P, 5) int64
-    per-strip results; ``near`` (T, N) uint32, ``near_d2`` (T, N) float64 and ``work``
-    (T, N) int32 per-thread scratch of the collision phase (work, near_d2: also of the
+    per-strip results; ``strip_done`` (2 P * 8,) int64: entry 8 k the number of the
+    pass (``CS_PASSNO``) in which strip k was last resolved (one cache line each);
+    ``near`` (T, N) uint32, ``near_d2`` (T, N) float64 and ``work`` (T, N) int32
+    per-thread scratch of the collision phase (work, near_d2: also of the
     radio); ``robot_flag`` (N,) uint8 flags by robot while the grid is rebuilt;
     ``tx_type`` (N,) uint8 and ``tx_data`` (N, 9) uint8: this tick's messages by
     sender, copied in pass 1 (so a controller part may rewrite ``out_*`` of its robots
@@ -167,6 +170,7 @@ class ThreadScratch(NamedTuple):
     cstate: np.ndarray
     strips: np.ndarray
     strip_out: np.ndarray
+    strip_done: np.ndarray
     near: np.ndarray
     near_d2: np.ndarray
     work: np.ndarray
@@ -193,9 +197,10 @@ def make_scratch(n: int, threads: int, key: int,
         rec_at=aligned_rows(t, w, np.int64),
         part_n=aligned_rows(t, 8, np.int64),
         sync=np.zeros(2, dtype=np.int64),
-        cstate=np.zeros(18, dtype=np.int64),
+        cstate=np.zeros(24, dtype=np.int64),
         strips=np.zeros(2 * STRIP_PAIRS + 1, dtype=np.int64),
         strip_out=np.zeros((2 * STRIP_PAIRS, 5), dtype=np.int64),
+        strip_done=aligned_rows(2 * STRIP_PAIRS, 8, np.int64).reshape(-1),
         near=np.zeros((t, n), dtype=np.uint32),
         near_d2=np.zeros((t, n)),
         work=np.zeros((t, n), dtype=np.int32),
@@ -703,7 +708,7 @@ def move_part(p, tick, cfg, grid, pos, heading, motor, alive, present, speed, tu
               flags, trig, scr):
     """Move the robots in slots n p / T .. n (p + 1) / T - 1 of the n filed ones (by
     slot, so that a thread moves the robots of the strips it resolves first in the
-    collision phase: see :func:`collide_strips_grab`); part_n[p, PN_STALE] = left a box."""
+    collision phase: see :func:`collide_pass_grab`); part_n[p, PN_STALE] = left a box."""
     n = grid.start[grid.dims[0] * grid.dims[1]]
     parts = scr.parts[0]
     _move_part(n * p // parts, n * (p + 1) // parts, tick, cfg, grid, pos, heading, motor,
@@ -935,19 +940,23 @@ def collide_begin(grid, scr):
     cs[CS_GRAB0] = 0
     cs[CS_GRAB1] = 0
     cs[CS_FRONT0:CS_BACK1 + 1] = 0
+    cs[CS_PASSNO] += 1
     if grid.state[S_DRIFTED] != 0:
         new_epoch(grid)
 
 
 @njit(cache=True, inline="always")
-def _lists_ok(colour, cs, strip_out):
-    """Contact lists are good for strips of ``colour`` in this pass: the epoch began
-    before the pass (so nobody has drifted before it), and for colour 1 no colour-0
-    strip of the pass drifted a robot."""
-    drifts = 0
-    if colour == 1:
-        for k in range(0, cs[CS_STRIPS], 2):
-            drifts += strip_out[k, SO_DRIFT]
+def _lists_ok(k, n_strips, strip_out):
+    """Contact lists are good for strip ``k`` in this pass: the epoch began before the
+    pass (so nobody had drifted before it), and for a colour-1 strip neither colour-0
+    strip next to it drifted a robot in this pass (only those two can move robots that
+    the strip's lists hold: see :func:`_collide_strip`). Lists are a cache: results do
+    not depend on whether they are used."""
+    if k % 2 == 0:
+        return True
+    drifts = strip_out[k - 1, SO_DRIFT]
+    if k + 1 < n_strips:
+        drifts += strip_out[k + 1, SO_DRIFT]
     return drifts == 0
 
 
@@ -958,9 +967,9 @@ def collide_strips(p, parts, colour, cfg, grid, pos, motor, flags, scr):
     n_strips = cs[CS_STRIPS]
     cur_bit = cs[CS_CUR]
     n_col = (n_strips + 1 - colour) // 2
-    ok = _lists_ok(colour, cs, scr.strip_out)
     for q in range(p, n_col, parts):
         k = 2 * q + colour
+        ok = _lists_ok(k, n_strips, scr.strip_out)
         _collide_strip(scr.strips[k], scr.strips[k + 1], cur_bit, 3 - cur_bit, ok, cfg, grid,
                        pos, motor, flags, scr.near[p], scr.near_d2[p], scr.work[p],
                        scr.strip_out[k])
@@ -979,26 +988,36 @@ def _claim_strip(cs, colour, n_col, from_back):
 
 
 @njit(cache=True)
-def collide_strips_grab(p, colour, cfg, grid, pos, motor, flags, scr):
-    """Thread ``p`` resolves strips of ``colour`` taken one at a time until none is
-    left (the threads that finish first take more). The first half of the threads take
-    strips from the front, the others from the back, so a thread mostly resolves the
-    strips whose robots it moved (:func:`move_part`) and their data stays in its core's
-    cache."""
+def collide_pass_grab(p, cfg, grid, pos, motor, flags, scr):
+    """Thread ``p``'s share of a collision pass: strips of colour 0, then of colour 1,
+    taken one at a time until none is left (the threads that finish first take more).
+    The first half of the threads take strips from the front, the others from the
+    back, so a thread mostly resolves the strips whose robots it moved
+    (:func:`move_part`) and their data stays in its core's cache. A colour-1 strip
+    starts as soon as the two colour-0 strips next to it are done (the only ones whose
+    rows it touches), not when all are: no barrier between the colours."""
     cs = scr.cstate
     n_strips = cs[CS_STRIPS]
     cur_bit = cs[CS_CUR]
-    n_col = (n_strips + 1 - colour) // 2
-    ok = _lists_ok(colour, cs, scr.strip_out)
+    passno = cs[CS_PASSNO]
     from_back = 2 * p >= scr.parts[0]
     near, near_d2, work, strips, strip_out = scr.near[p], scr.near_d2[p], scr.work[p], \
         scr.strips, scr.strip_out
-    q = _claim_strip(cs, colour, n_col, from_back)
-    while q >= 0:
-        k = 2 * q + colour
-        _collide_strip(strips[k], strips[k + 1], cur_bit, 3 - cur_bit, ok, cfg, grid,
-                       pos, motor, flags, near, near_d2, work, strip_out[k])
+    done = scr.strip_done
+    for colour in range(2):
+        n_col = (n_strips + 1 - colour) // 2
         q = _claim_strip(cs, colour, n_col, from_back)
+        while q >= 0:
+            k = 2 * q + colour
+            if colour == 1:
+                wait_for(done, 8 * (k - 1), passno)
+                if k + 1 < n_strips:
+                    wait_for(done, 8 * (k + 1), passno)
+            _collide_strip(strips[k], strips[k + 1], cur_bit, 3 - cur_bit,
+                           _lists_ok(k, n_strips, strip_out), cfg, grid, pos, motor,
+                           flags, near, near_d2, work, strip_out[k])
+            atomic_store(done, 8 * k, passno)
+            q = _claim_strip(cs, colour, n_col, from_back)
 
 
 @njit(cache=True)
@@ -1038,6 +1057,7 @@ def collide_after_pass(cfg, grid, pos, present, flags, scr):
         cs[CS_GRAB0] = 0
         cs[CS_GRAB1] = 0
         cs[CS_FRONT0:CS_BACK1 + 1] = 0
+        cs[CS_PASSNO] += 1
 
 
 @njit(cache=True)
