@@ -768,7 +768,7 @@ def strip_bounds(grid, strips):
     return n_strips
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def _collide_strip(lo, hi, cur_bit, nxt_bit, lists_ok, cfg, grid, pos, motor, flags, near,
                    near_d2, work, out):
     """One pass over the slots lo..hi-1 of a strip (see module doc); writes examined,
@@ -976,15 +976,22 @@ def collide_strips(p, parts, colour, cfg, grid, pos, motor, flags, scr):
 
 
 @njit(cache=True, inline="always")
-def _claim_strip(cs, colour, n_col, from_back):
+def _claim_strip(cs, colour, n_col, from_back, alone, mine):
     """The next unclaimed strip of ``colour`` (0 .. n_col - 1) counted from the front or
     the back, or -1 when all are claimed: every strip is claimed exactly once, the
-    front claims 0, 1, ... and the back claims n_col - 1, n_col - 2, ..."""
+    front claims 0, 1, ... and the back claims n_col - 1, n_col - 2, ... ``alone``:
+    this thread is the only one claiming from its end (two threads), so ``mine`` (how
+    many it claimed before) counts that end and no shared counter of the end is needed
+    (one atomic step a claim instead of two)."""
     if atomic_add(cs, CS_GRAB0 + colour, 1) >= n_col:
         return -1
-    if from_back:
-        return n_col - 1 - atomic_add(cs, CS_BACK0 + colour, 1)
-    return atomic_add(cs, CS_FRONT0 + colour, 1)
+    if alone:
+        at = mine
+    elif from_back:
+        at = atomic_add(cs, CS_BACK0 + colour, 1)
+    else:
+        at = atomic_add(cs, CS_FRONT0 + colour, 1)
+    return n_col - 1 - at if from_back else at
 
 
 @njit(cache=True)
@@ -1004,10 +1011,13 @@ def collide_pass_grab(p, cfg, grid, pos, motor, flags, scr):
     near, near_d2, work, strips, strip_out = scr.near[p], scr.near_d2[p], scr.work[p], \
         scr.strips, scr.strip_out
     done = scr.strip_done
+    alone = scr.parts[0] == 2
     for colour in range(2):
         n_col = (n_strips + 1 - colour) // 2
-        q = _claim_strip(cs, colour, n_col, from_back)
+        mine = 0
+        q = _claim_strip(cs, colour, n_col, from_back, alone, mine)
         while q >= 0:
+            mine += 1
             k = 2 * q + colour
             if colour == 1:
                 wait_for(done, 8 * (k - 1), passno)
@@ -1017,7 +1027,7 @@ def collide_pass_grab(p, cfg, grid, pos, motor, flags, scr):
                            _lists_ok(k, n_strips, strip_out), cfg, grid, pos, motor,
                            flags, near, near_d2, work, strip_out[k])
             atomic_store(done, 8 * k, passno)
-            q = _claim_strip(cs, colour, n_col, from_back)
+            q = _claim_strip(cs, colour, n_col, from_back, alone, mine)
 
 
 @njit(cache=True)
