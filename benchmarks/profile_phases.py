@@ -48,7 +48,7 @@ from etswarm.sim.parallel import (
     collide_after_pass,
     collide_begin,
     collide_end,
-    collide_strips_grab,
+    collide_pass_grab,
     control_begin,
     control_done,
     grid_sync_flags,
@@ -187,15 +187,9 @@ def _timed_thread(p, n, tick0, cfg, grid, pos, heading, motor, led, alive, prese
             c[5] += _cycles() - t7
         while atomic_load(cs, CS_CONT) != 0:
             t = _cycles()
-            collide_strips_grab(p, 0, cfg, grid, pos, motor, flags, scr)
-            t1 = _cycles()
-            if arrive(sync, parts):
-                release(sync)
-            t2 = _cycles()
-            collide_strips_grab(p, 1, cfg, grid, pos, motor, flags, scr)
+            collide_pass_grab(p, cfg, grid, pos, motor, flags, scr)
             t3 = _cycles()
-            c[3] += (t1 - t) + (t3 - t2)
-            c[5] += t2 - t1
+            c[3] += t3 - t
             if arrive(sync, parts):
                 t4 = _cycles()
                 collide_after_pass(cfg, grid, pos, present, flags, scr)

@@ -3,7 +3,7 @@
 The random walk's parts over all robots followed by its rest must be its step; the
 threaded loop, which runs the parts on every thread right after filing inboxes, must give
 what the step run on one thread gives, also in a tick whose radio falls back to one
-thread (a sender with more receivers than a buffer row holds).
+thread (more copies than the threaded radio's streams hold).
 """
 
 from __future__ import annotations
@@ -21,7 +21,7 @@ from etswarm.sim.controllers.randomwalk import (
     randomwalk_step,
 )
 from etswarm.sim.kernel import load_kernel
-from etswarm.sim.parallel import RX_MAX, no_part_step
+from etswarm.sim.parallel import make_scratch, no_part_step
 from etswarm.sim.simulator import ThreadChooser
 
 
@@ -82,11 +82,15 @@ class SlowRandomWalk:
                         view.out_data, self.mem, view.rng)
 
 
+#: Robots of the crowd world's pile.
+PILE = 60
+
+
 def crowd_world(params: SimParams) -> World:
-    """RX_MAX + 12 robots piled within a few mm (every one hears all others), and a
-    ring of robots around them."""
+    """PILE robots piled within a few mm (every one hears all others), and a ring of
+    robots around them."""
     rng = np.random.default_rng(2)
-    pile = 400.0 + rng.random((RX_MAX + 12, 2)) * 4.0
+    pile = 400.0 + rng.random((PILE, 2)) * 4.0
     ang = np.linspace(0, 2 * np.pi, 40, endpoint=False)
     ring = 400.0 + 150.0 * np.stack([np.cos(ang), np.sin(ang)], axis=1)
     world = World.from_positions(np.concatenate([pile, ring]), params=params, seed=2)
@@ -102,10 +106,14 @@ def test_threaded_parts_equal_the_step_when_the_radio_falls_back(parts: int) -> 
     n = fast_world.n
     fast = Simulator(fast_world, RandomWalk(n), params, 3)
     fast._chooser = ThreadChooser(parts, adaptive=False)
-    # tick 0: a robot of the pile sends to all RX_MAX + 11 others (a buffer row holds
-    # RX_MAX): the threaded radio files that tick on one thread
-    pile = RX_MAX + 12
-    assert np.any(fast_world.tx_phase[:pile] == 0)
+    # streams of one copy per robot of a part: n // 2 + 1 copies from one part to
+    # another; at tick 0 the pile's senders send more than all four streams hold, so
+    # the threaded radio files that tick on one thread
+    assert fast._scratch is not None
+    fast._scratch = make_scratch(n, 2, int(fast._scratch.key[0]), rx_per_robot=1)
+    pile = PILE
+    senders = int(np.sum(fast_world.tx_phase[:pile] == 0))
+    assert senders * (pile - 1) > 4 * (n // 2 + 1)
     spread = fast_world.pos[:pile].max(axis=0) - fast_world.pos[:pile].min(axis=0)
     assert np.hypot(*spread) < params.comm_range_mm
     slow_world = crowd_world(params)

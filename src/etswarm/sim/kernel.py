@@ -85,7 +85,7 @@ from numba import njit, prange
 
 from etswarm.sim.parallel import (
     CS_CONT, CS_DONE, CS_STOP, collide_after_pass, collide_begin, collide_end,
-    collide_strips_grab, control_begin, control_done, grid_sync_flags, move_finish,
+    collide_pass_grab, control_begin, control_done, grid_sync_flags, move_finish,
     move_part, part_bounds, prebuild_lists, radio_bad, radio_count, radio_file_part,
     radio_list_part,
 )
@@ -139,10 +139,7 @@ def thread_ticks(p, n, tick0, cfg, grid, pos, heading, motor, led, alive, presen
             collide_begin(grid, scratch)
             release(sync)
         while atomic_load(cs, CS_CONT) != 0:
-            collide_strips_grab(p, 0, cfg, grid, pos, motor, flags, scratch)
-            if arrive(sync, parts):
-                release(sync)
-            collide_strips_grab(p, 1, cfg, grid, pos, motor, flags, scratch)
+            collide_pass_grab(p, cfg, grid, pos, motor, flags, scratch)
             if arrive(sync, parts):
                 collide_after_pass(cfg, grid, pos, present, flags, scratch)
                 if cs[CS_CONT] == 0:

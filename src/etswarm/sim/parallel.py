@@ -13,20 +13,26 @@ the receiver and a salt naming the draw (loss, distance noise, speed noise, head
 noise). Uniforms take the top 53 bits; normals use Box-Muller on two such uniforms.
 The controller still gets the sequential controller stream (it runs on one thread).
 
-Radio. Pass 1 (one part per thread, by sender index): each sender of this tick lists its
-receivers (slot order, as the serial radio visits them) with their measured distance,
-after the loss draw, in a (N, RX_MAX) buffer row of its own (rows of one part's senders
-are consecutive), grouped by the part the receiver belongs to (slot order kept within
-a group), with the sender's message copied. Pass 2 (one part per thread, by receiver
-index): each thread walks all senders in index order and files the copies of its own
-group of each row. So every inbox holds
-its copies in sender order, capped at K exactly as the serial radio does; with no loss
-and no noise the inboxes are identical to the serial radio's. A sender with more than
-RX_MAX receivers in range (only possible when many robots overlap) sends the whole tick
-through a one-thread version of the same procedure.
+Radio. Pass 1 (one part per thread, by place: the senders filed in the part's slots,
+taken in index order): each sender of this tick has its message copied and lists its
+receivers (slot order) after the loss draw, appending (sender, receiver, measured
+distance) to one stream per receiving part (robots by index, as the controller
+parts). Pass 2 (one part per thread, by receiver index): each thread merges the
+streams to its part from all parts into sender order (each stream is in sender order
+and parts' senders are disjoint) and files the copies. So every inbox holds its copies
+in sender order, capped at K exactly as the serial radio does; with no loss and no
+noise the inboxes are identical to the serial radio's. A tick whose copies would
+overflow a stream (only possible when many robots overlap) is sent through a
+one-thread version of the same procedure. Working by place keeps the grid rows a
+thread reads in the cache of the core that moved those robots; only the copies cross
+between cores, in compact streams.
 
-Motion. Robots split by index into one part per thread; the arithmetic is the serial
-move's. Robots whose collision budget runs out are flagged for the collision phase.
+Motion. Robots split by grid slot into one part per thread (so by place: a thread
+moves the robots of the strips it resolves first in the collision phase, and their
+grid data stays in its core's cache; splitting by index made both cores write every
+cache line of the grid each tick, which cost more than the move itself); the arithmetic
+is the serial move's. Robots whose collision budget runs out are flagged for the
+collision phase.
 
 Collisions. The work list is a flag per grid slot (bit 1 or bit 2, alternating by pass:
 the pass examines slots carrying its bit and sets the other bit on robots it moves). The
@@ -37,7 +43,9 @@ single-threaded one in cells of 4 r + 4 margin): a collision query reaches 2 r +
 centre that lies at most a margin outside its cell, so an examined robot touches only
 slots in its own row and one row up or down, and strips 0, 2, 4, ... can be resolved at
 the same time, then strips 1, 3, 5, ... (threads take the strips of a colour one at a
-time from a shared counter). The smaller cells also make the queries scan fewer robots. A
+time until none is left, the first half of the threads from the top, the others from
+the bottom; a strip of colour 1 starts as soon as the two strips next to it are done,
+without waiting for the whole colour). The smaller cells also make the queries scan fewer robots. A
 strip examines its flagged slots in slot order with the serial pass's arithmetic. A robot
 pushed out of its slack box earlier in the pass is examined in the next pass (after the
 grid rebuild) instead of now. The order in which overlapping pairs are resolved differs
@@ -46,7 +54,7 @@ physics (overlap shares, still-robot grip, slop, pass limit, walls) is the same.
 
 Where it runs. The threaded tick loop (:mod:`etswarm.sim.kernel`) calls the per-part
 functions (``radio_list_part``, ``radio_file_part``, ``move_part``,
-``collide_strips_grab``, ...) on every thread and the one-thread ones (``radio_count``,
+``collide_pass_grab``, ...) on every thread and the one-thread ones (``radio_count``,
 ``move_finish``, ``collide_begin``, ``collide_after_pass``, ``collide_end``) on one.
 ``radio_phase_mt``, ``move_phase_mt`` and ``collide_phase_mt`` run the same parts one
 after another on the calling thread (the slow path, for Python controllers); they give
@@ -79,6 +87,7 @@ from etswarm.sim.neighbours import (
     R_BY,
     S_DRIFTED,
     S_EPOCH,
+    aligned_rows,
     cell_range,
     contact_list_from,
     drifted,
@@ -87,13 +96,14 @@ from etswarm.sim.neighbours import (
     new_epoch,
 )
 from etswarm.sim.prefetch import prefetch
-from etswarm.sim.sync import atomic_add, atomic_load
+from etswarm.sim.sync import atomic_add, atomic_load, atomic_store, wait_for
 from etswarm.sim.world import PAYLOAD_BYTES
 
 #: Strips per colour in the collision phase (strips = 2 * STRIP_PAIRS at most).
 STRIP_PAIRS = 8
-#: Receivers one sender can list per tick in the threaded radio's buffer.
-RX_MAX = 48
+#: Copies the threaded radio's stream from one part to another holds per robot of the
+#: sending part (a tick that would send more is filed by the one-thread radio).
+RX_PER_ROBOT = 16
 
 _C1 = np.uint64(0x9E3779B97F4A7C15)
 _C2 = np.uint64(0xD1B54A32D192ED03)
@@ -111,6 +121,7 @@ PN_SENT, PN_LOST, PN_BAD, PN_DELIVERED, PN_OVERFLOW, PN_STALE, PN_DRIFT = 0, 1, 
 #: entries of ThreadScratch.cstate
 CS_CUR, CS_PASSES, CS_PUSHES, CS_EXAMINED, CS_PENDING, CS_CONT, CS_STRIPS, CS_STALE = range(8)
 CS_STOP, CS_DONE, CS_GRAB0, CS_GRAB1, CS_CTL, CS_BUILD = 8, 9, 10, 11, 12, 13
+CS_FRONT0, CS_FRONT1, CS_BACK0, CS_BACK1, CS_PASSNO = 14, 15, 16, 17, 18
 #: Slots a thread takes at a time when it builds contact lists during the control phase.
 PREBUILD_CHUNK = 16
 
@@ -123,68 +134,79 @@ SALT_SPEED_A, SALT_SPEED_B, SALT_HEAD_A, SALT_HEAD_B = 4, 5, 6, 7
 
 
 class ThreadScratch(NamedTuple):
-    """Work arrays of the threaded phases (N robots, T threads, P = STRIP_PAIRS).
+    """Work arrays of the threaded phases (N robots, T threads, P = STRIP_PAIRS,
+    W = 8 * ceil(T / 8) so that a row of W int64 fills whole cache lines, C =
+    RX_PER_ROBOT * (N // T + 1)).
 
-    ``key`` (1,) uint64 hash key; ``parts`` (1,) int64 T; ``senders`` (N,) int32: this
-    tick's senders, part p's from row N p / T on; ``rx_j`` (N, RX_MAX) int32 and
-    ``rx_d`` (N, RX_MAX) float32 mm: receivers and distances of the sender in the same
-    row of ``senders``; ``rx_n`` (N,) int32: how many; ``part_n`` (T, 8) int64 per-part
-    counts (columns ``PN_*``); ``sync`` (2,) int64 the barrier's state
-    (:mod:`etswarm.sim.sync`); ``cstate`` (14,) int64 the collision phase's state
-    between passes and the tick loop's flags (``CS_*``); ``strips`` (2 P + 1,) int64 slot
-    bounds of the strips; ``strip_out`` (2 P, 5) int64 per-strip
-    results; ``near`` (T, N) uint32, ``near_d2`` (T, N) float64 and ``work`` (T, N) int32
-    per-thread scratch of the collision phase (work, near_d2: also of the radio);
-    ``robot_flag`` (N,) uint8 flags by robot while the grid is rebuilt; ``tx_type`` (N,)
-    uint8 and ``tx_data`` (N, 9) uint8: the message of the sender in the same row of
-    ``senders``, copied in pass 1 (so a controller part may rewrite ``out_*`` of its
-    robots while other threads still file copies); ``rx_cut`` (N, T + 1) int32: where
-    each part's receivers begin in the row (pass 1 groups them by part, so a thread
-    reads only its own).
+    ``key`` (1,) uint64 hash key; ``parts`` (1,) int64 T; ``rec_i``, ``rec_j`` (T, T, C)
+    int32 and ``rec_d`` (T, T, C) float32 mm: the radio's streams, [p, q] holding the
+    copies that part p's senders send to part q's receivers (sender, receiver,
+    measured distance) in sender order; ``rec_n`` (T, W) int64: their lengths
+    (row p written by part p); ``rec_at`` (T, W) int64: part q's read positions in
+    row q; ``part_n`` (T, 8) int64 per-part counts (columns ``PN_*``); ``sync`` (2,)
+    int64 the barrier's state (:mod:`etswarm.sim.sync`); ``cstate`` (24,) int64 the
+    collision phase's state between passes and the tick loop's flags (``CS_*``);
+    ``strips`` (2 P + 1,) int64 slot bounds of the strips; ``strip_out`` (2 P, 5) int64
+    per-strip results; ``strip_done`` (2 P * 8,) int64: entry 8 k the number of the
+    pass (``CS_PASSNO``) in which strip k was last resolved (one cache line each);
+    ``near`` (T, N) uint32, ``near_d2`` (T, N) float64 and ``work`` (T, N) int32
+    per-thread scratch of the collision phase (work, near_d2: also of the
+    radio); ``robot_flag`` (N,) uint8 flags by robot while the grid is rebuilt;
+    ``tx_type`` (N,) uint8 and ``tx_data`` (N, 9) uint8: this tick's messages by
+    sender, copied in pass 1 (so a controller part may rewrite ``out_*`` of its robots
+    while other threads still file copies). Rows of T or W int64 that different
+    threads write start on cache-line boundaries.
     """
 
     key: np.ndarray
     parts: np.ndarray
-    rx_j: np.ndarray
-    rx_d: np.ndarray
-    rx_n: np.ndarray
-    senders: np.ndarray
+    rec_i: np.ndarray
+    rec_j: np.ndarray
+    rec_d: np.ndarray
+    rec_n: np.ndarray
+    rec_at: np.ndarray
     part_n: np.ndarray
     sync: np.ndarray
     cstate: np.ndarray
     strips: np.ndarray
     strip_out: np.ndarray
+    strip_done: np.ndarray
     near: np.ndarray
     near_d2: np.ndarray
     work: np.ndarray
     robot_flag: np.ndarray
     tx_type: np.ndarray
     tx_data: np.ndarray
-    rx_cut: np.ndarray
 
 
-def make_scratch(n: int, threads: int, key: int) -> ThreadScratch:
-    """Work arrays for ``n`` robots on ``threads`` threads with hash key ``key``."""
+def make_scratch(n: int, threads: int, key: int,
+                 rx_per_robot: int = 0) -> ThreadScratch:
+    """Work arrays for ``n`` robots on ``threads`` threads with hash key ``key``; the
+    radio's streams hold ``rx_per_robot`` (default RX_PER_ROBOT) copies per robot of
+    the sending part."""
     t = max(int(threads), 1)
+    w = 8 * ((t + 7) // 8)
+    room = (rx_per_robot or RX_PER_ROBOT) * (n // t + 1)
     return ThreadScratch(
         key=np.array([key], dtype=np.uint64),
         parts=np.array([t], dtype=np.int64),
-        rx_j=np.zeros((n, RX_MAX), dtype=np.int32),
-        rx_d=np.zeros((n, RX_MAX), dtype=np.float32),
-        rx_n=np.zeros(n, dtype=np.int32),
-        senders=np.zeros(n, dtype=np.int32),
-        part_n=np.zeros((t, 8), dtype=np.int64),
+        rec_i=np.zeros((t, t, room), dtype=np.int32),
+        rec_j=np.zeros((t, t, room), dtype=np.int32),
+        rec_d=np.zeros((t, t, room), dtype=np.float32),
+        rec_n=aligned_rows(t, w, np.int64),
+        rec_at=aligned_rows(t, w, np.int64),
+        part_n=aligned_rows(t, 8, np.int64),
         sync=np.zeros(2, dtype=np.int64),
-        cstate=np.zeros(14, dtype=np.int64),
+        cstate=np.zeros(24, dtype=np.int64),
         strips=np.zeros(2 * STRIP_PAIRS + 1, dtype=np.int64),
         strip_out=np.zeros((2 * STRIP_PAIRS, 5), dtype=np.int64),
+        strip_done=aligned_rows(2 * STRIP_PAIRS, 8, np.int64).reshape(-1),
         near=np.zeros((t, n), dtype=np.uint32),
         near_d2=np.zeros((t, n)),
         work=np.zeros((t, n), dtype=np.int32),
         robot_flag=np.zeros(n, dtype=np.uint8),
         tx_type=np.zeros(n, dtype=np.uint8),
         tx_data=np.zeros((n, 9), dtype=np.uint8),
-        rx_cut=np.zeros((n, t + 1), dtype=np.int32),
     )
 
 
@@ -272,79 +294,78 @@ def grid_sync_flags(grid, pos, present, flags, robot_flag):
 
 
 @njit(cache=True)
-def _list_receivers(i, row_out, x, y, tick, key, cfg, grid, alive, rx_j, rx_d, row_cap,
-                    cand_s, cand_d2):
-    """Receivers of sender i at (x, y) (slot order) into rx_j[row_out], rx_d[row_out];
-    returns (listed, lost), listed = -1 when more than ``row_cap`` would be listed.
-    ``cand_s`` (N,) int32 and ``cand_d2`` (N,) float64: scratch for the slots in range."""
-    rng_r = cfg.comm_range
-    return _receivers_from(i, row_out, x, y, tick, key, grid.start, grid.sxb, grid.sidx,
-                           grid.geom[G_OX], grid.geom[G_OY], grid.geom[G_INV], grid.dims[0],
-                           grid.dims[1], rng_r + grid.geom[G_MARGIN], rng_r * rng_r,
-                           cfg.loss, cfg.dist_noise, alive, rx_j, rx_d, row_cap, cand_s,
-                           cand_d2)
-
-
-@njit(cache=True)
-def _receivers_from(i, row_out, x, y, tick, key, start, sxb, sidx, ox, oy, inv, nx, ny,
-                    reach, r2, loss, noise, alive, rx_j, rx_d, row_cap, cand_s, cand_d2):
-    """:func:`_list_receivers` from the grid's arrays and geometry (hot loops call this:
-    no field of a tuple is read per sender, see the numba note in docs/simulator.md)."""
+def _in_range(x, y, start, sxb, ox, oy, inv, nx, ny, reach, r2, cand_s, cand_d2):
+    """The filed slots within range of (x, y) (squared range ``r2`` mm^2; ``reach``: range
+    plus the grid's margin) in slot order into ``cand_s`` (N,) int32 with their squared
+    distances in ``cand_d2`` (N,) float64; returns how many."""
     cx0, cx1 = cell_range(x, reach, ox, inv, nx)
     cy0, cy1 = cell_range(y, reach, oy, inv, ny)
-    # the slots in range in slot order, kept without branching on distances
+    # kept without branching on distances
     n_in = 0
     for cy in range(cy0, cy1 + 1):
         row = cy * nx
-        for s in range(start[row + cx0], start[row + cx1 + 1]):
+        for s in range(np.uint64(start[row + cx0]), np.uint64(start[row + cx1 + 1])):
             dx = sxb[s, P_X] - x
             dy = sxb[s, P_Y] - y
             d2 = dx * dx + dy * dy
             cand_s[n_in] = s
             cand_d2[n_in] = d2
             n_in += d2 <= r2
-    listed = 0
-    lost = 0
-    for q in range(n_in):
-        d2 = cand_d2[q]
-        j = sidx[cand_s[q]]
-        if j == i or not alive[j]:
-            continue
-        if loss > 0.0 and hash_unit(key, tick, i, j * 8 + SALT_LOSS) <= loss:
-            lost += 1
-            continue
-        if listed >= row_cap:
-            return -1, lost
-        d = np.sqrt(d2)
-        if noise > 0.0:
-            d += noise * hash_normal(key, tick, i, j * 8 + SALT_NOISE_A,
-                                     j * 8 + SALT_NOISE_B)
-            if d < 0.0:
-                d = 0.0
-        rx_j[row_out, listed] = j
-        rx_d[row_out, listed] = d
-        listed += 1
-    return listed, lost
+    return n_in
+
+
+@njit(cache=True, inline="always")
+def _heard(i, j, d2, tick, key, loss, noise):
+    """The distance (mm) receiver j measures to sender i at squared distance d2, or -1.0
+    when the copy is lost (hashed draws, see module doc)."""
+    if loss > 0.0 and hash_unit(key, tick, i, j * 8 + SALT_LOSS) <= loss:
+        return -1.0
+    d = np.sqrt(d2)
+    if noise > 0.0:
+        d += noise * hash_normal(key, tick, i, j * 8 + SALT_NOISE_A, j * 8 + SALT_NOISE_B)
+        if d < 0.0:
+            d = 0.0
+    return d
 
 
 @njit(cache=True)
 def _is_sender(i, phase, tx_phase, out_on, alive, present):
-    return tx_phase[i] == phase and out_on[i] and alive[i] and present[i]
+    # one expression of bitwise ands: an ``and`` chain here compiles to code that costs
+    # about 18 ns per call (measured), more than the rest of a radio pass per robot
+    return (tx_phase[i] == phase) & out_on[i] & alive[i] & present[i]
+
+
+@njit(cache=True, inline="always")
+def _part_of(j, n, parts):
+    """The part q whose robots n q / T .. n (q + 1) / T - 1 include robot j."""
+    q = j * parts // n
+    while q + 1 < parts and j >= n * (q + 1) // parts:
+        q += 1
+    while q > 0 and j < n * q // parts:
+        q -= 1
+    return q
 
 
 @njit(cache=True)
 def _radio_one_thread(tick, cfg, grid, pos, alive, present, tx_phase, out_on, out_type,
                       out_data, in_count, in_type, in_data, in_dist, counters, scr):
-    """The threaded radio's result computed on one thread without the per-sender cap
-    (used when a sender has more than RX_MAX receivers)."""
+    """The threaded radio's result computed on one thread without the streams' capacity
+    (used when a stream would overflow)."""
     n = pos.shape[0]
     cap = in_type.shape[1]
     key = scr.key[0]
     phase = tick % cfg.tx_period
+    start, sxb, sidx, slot = grid.start, grid.sxb, grid.sidx, grid.slot
+    ox = grid.geom[G_OX]
+    oy = grid.geom[G_OY]
+    inv = grid.geom[G_INV]
+    nx = grid.dims[0]
+    ny = grid.dims[1]
+    rng_r = cfg.comm_range
+    reach = rng_r + grid.geom[G_MARGIN]
+    cand_s = scr.work[0]
+    cand_d2 = scr.near_d2[0]
     in_count[:] = 0
-    big = n  # a row of rx_j is RX_MAX long: list one sender at a time into a big row
-    row_j = np.empty((1, big), dtype=np.int32)
-    row_d = np.empty((1, big), dtype=np.float32)
     sent = 0
     delivered = 0
     lost = 0
@@ -353,19 +374,24 @@ def _radio_one_thread(tick, cfg, grid, pos, alive, present, tx_phase, out_on, ou
         if not _is_sender(i, phase, tx_phase, out_on, alive, present):
             continue
         sent += 1
-        listed, n_lost = _list_receivers(i, 0, pos[i, 0], pos[i, 1], tick, key, cfg, grid,
-                                         alive, row_j, row_d, big, scr.work[0],
-                                         scr.near_d2[0])
-        lost += n_lost
-        for k in range(listed):
-            j = row_j[0, k]
+        s = slot[i]
+        n_in = _in_range(sxb[s, P_X], sxb[s, P_Y], start, sxb, ox, oy, inv, nx, ny, reach,
+                         rng_r * rng_r, cand_s, cand_d2)
+        for q in range(n_in):
+            j = sidx[cand_s[q]]
+            if j == i or not alive[j]:
+                continue
+            d = _heard(i, j, cand_d2[q], tick, key, cfg.loss, cfg.dist_noise)
+            if d < 0.0:
+                lost += 1
+                continue
             c = in_count[j]
             if c >= cap:
                 overflow += 1
                 continue
             in_type[j, c] = out_type[i]
             in_data[j, c, :] = out_data[i, :]
-            in_dist[j, c] = row_d[0, k]
+            in_dist[j, c] = np.float32(d)
             in_count[j] = c + 1
             delivered += 1
     counters[0] += sent
@@ -375,41 +401,18 @@ def _radio_one_thread(tick, cfg, grid, pos, alive, present, tx_phase, out_on, ou
 
 
 @njit(cache=True)
-def _split_by_part(m, listed, n, parts, rx_j, rx_d, rx_cut, tmp_j, tmp_d):
-    """Reorder row ``m``'s ``listed`` receivers by part (robots n q / T .. n (q + 1) / T
-    - 1), keeping their order within a part, and write the part boundaries to
-    ``rx_cut[m, :parts + 1]``; ``tmp_j``, ``tmp_d``: scratch of at least ``listed``."""
-    rx_cut[m, 0] = 0
-    if parts == 1:
-        rx_cut[m, 1] = listed
-        return
-    for k in range(listed):
-        tmp_j[k] = rx_j[m, k]
-        tmp_d[k] = rx_d[m, k]
-    at = 0
-    for q in range(parts):
-        lo = n * q // parts
-        hi = n * (q + 1) // parts
-        for k in range(listed):
-            j = tmp_j[k]
-            rx_j[m, at] = j
-            rx_d[m, at] = tmp_d[k]
-            at += (j >= lo) & (j < hi)
-        rx_cut[m, q + 1] = at
-
-
-@njit(cache=True)
-def _radio_list_part(lo, hi, tick, cfg, grid, pos, alive, present, tx_phase, out_on,
-                     out_type, out_data, scr, p):
-    """Pass 1 for senders lo..hi-1: list receivers and copy the message; part counts into
-    scr.part_n[p]."""
+def _radio_list(slo, shi, p, tick, cfg, grid, alive, present, tx_phase, out_on, out_type,
+                out_data, scr):
+    """Pass 1 for the senders filed in slots slo..shi-1, in index order: copy each
+    message and append every copy that is not lost, as (sender, receiver, distance),
+    to the stream of the part the receiver belongs to."""
+    n = alive.shape[0]
+    parts = scr.parts[0]
     phase = tick % cfg.tx_period
     key = scr.key[0]
-    n = pos.shape[0]
-    parts = scr.parts[0]
     # the grid's and the scratch's arrays in locals: a tuple field read in the loop
     # would cost numba's reference counting an atomic increment and decrement
-    start, sxb, sidx = grid.start, grid.sxb, grid.sidx
+    start, sxb, sidx, slot = grid.start, grid.sxb, grid.sidx, grid.slot
     ox = grid.geom[G_OX]
     oy = grid.geom[G_OY]
     inv = grid.geom[G_INV]
@@ -420,84 +423,112 @@ def _radio_list_part(lo, hi, tick, cfg, grid, pos, alive, present, tx_phase, out
     r2 = rng_r * rng_r
     loss = cfg.loss
     noise = cfg.dist_noise
-    senders, tx_type, tx_data = scr.senders, scr.tx_type, scr.tx_data
-    rx_j, rx_d, rx_n, rx_cut = scr.rx_j, scr.rx_d, scr.rx_n, scr.rx_cut
-    work = scr.work[p]
-    near_d2 = scr.near_d2[p]
+    tx_type, tx_data = scr.tx_type, scr.tx_data
+    rec_i, rec_j, rec_d, rec_n = scr.rec_i[p], scr.rec_j[p], scr.rec_d[p], scr.rec_n[p]
+    room = rec_i.shape[1]
+    cand_s = scr.work[p]
+    cand_d2 = scr.near_d2[p]
     n_bytes = out_data.shape[1]
-    m = lo
+    for q in range(parts):
+        rec_n[q] = 0
+    sent = 0
     lost = 0
     bad = 0
-    for i in range(lo, hi):
-        if not _is_sender(i, phase, tx_phase, out_on, alive, present):
+    for i in range(n):
+        s = slot[i]
+        if s < slo or s >= shi or not _is_sender(i, phase, tx_phase, out_on, alive, present):
             continue
-        senders[m] = i
-        tx_type[m] = out_type[i]
+        sent += 1
+        tx_type[i] = out_type[i]
         for b in range(n_bytes):
-            tx_data[m, b] = out_data[i, b]
-        listed, n_lost = _receivers_from(i, m, pos[i, 0], pos[i, 1], tick, key, start, sxb,
-                                         sidx, ox, oy, inv, nx, ny, reach, r2, loss, noise,
-                                         alive, rx_j, rx_d, RX_MAX, work, near_d2)
-        lost += n_lost
-        if listed < 0:
-            bad = 1
-            listed = 0
-        rx_n[m] = listed
-        _split_by_part(m, listed, n, parts, rx_j, rx_d, rx_cut, work, near_d2)
-        m += 1
-    scr.part_n[p, PN_SENT] = m - lo
+            tx_data[i, b] = out_data[i, b]
+        n_in = _in_range(sxb[s, P_X], sxb[s, P_Y], start, sxb, ox, oy, inv, nx, ny, reach,
+                         r2, cand_s, cand_d2)
+        for c in range(n_in):
+            j = sidx[cand_s[c]]
+            if j == i or not alive[j]:
+                continue
+            d = _heard(i, j, cand_d2[c], tick, key, loss, noise)
+            if d < 0.0:
+                lost += 1
+                continue
+            q = _part_of(j, n, parts)
+            k = rec_n[q]
+            if k >= room:
+                bad = 1
+                continue
+            rec_i[q, k] = i
+            rec_j[q, k] = j
+            rec_d[q, k] = d
+            rec_n[q] = k + 1
+    scr.part_n[p, PN_SENT] = sent
     scr.part_n[p, PN_LOST] = lost
     scr.part_n[p, PN_BAD] = bad
 
 
 @njit(cache=True)
-def _radio_file_part(lo, hi, n, parts, in_count, in_type, in_data, in_dist, scr, p):
-    """Pass 2 for receivers lo..hi-1: file every listed copy in sender order (the
-    messages as pass 1 copied them)."""
+def _radio_file(lo, hi, q, in_count, in_type, in_data, in_dist, scr):
+    """Pass 2 for receivers lo..hi-1 (part q): file the copies of every part's stream to
+    part q, merged into sender order (each stream is in sender order), with the
+    messages as pass 1 copied them."""
+    parts = scr.parts[0]
     cap = in_type.shape[1]
-    rx_cut, rx_j, rx_d = scr.rx_cut, scr.rx_j, scr.rx_d
+    rec_i, rec_j, rec_d, rec_n = scr.rec_i, scr.rec_j, scr.rec_d, scr.rec_n
     tx_type, tx_data, part_n = scr.tx_type, scr.tx_data, scr.part_n
+    at = scr.rec_at[q]
     n_bytes = tx_data.shape[1]
     in_count[lo:hi] = 0
+    for p in range(parts):
+        at[p] = 0
     delivered = 0
     overflow = 0
-    for q in range(parts):
-        first = n * q // parts
-        last = first + part_n[q, PN_SENT]
-        for m in range(first, last):
-            mtype = tx_type[m]
-            if m + 1 < last:
-                # the next sender's receivers here: ask for their inbox rows (scattered)
-                for k in range(rx_cut[m + 1, p], rx_cut[m + 1, p + 1]):
-                    j = rx_j[m + 1, k]
-                    prefetch(in_count, j)
-                    prefetch(in_type, j)
-                    prefetch(in_data, j)
-                    prefetch(in_dist, j)
-            # this part's receivers of sender row m (pass 1 put them together)
-            for k in range(rx_cut[m, p], rx_cut[m, p + 1]):
-                j = rx_j[m, k]
-                c = in_count[j]
-                if c >= cap:
-                    overflow += 1
-                    continue
-                in_type[j, c] = mtype
-                if n_bytes == PAYLOAD_BYTES:  # a constant count: one unrolled copy
-                    for b in range(PAYLOAD_BYTES):
-                        in_data[j, c, b] = tx_data[m, b]
-                else:
-                    for b in range(n_bytes):
-                        in_data[j, c, b] = tx_data[m, b]
-                in_dist[j, c] = rx_d[m, k]
-                in_count[j] = c + 1
-                delivered += 1
-    part_n[p, PN_DELIVERED] = delivered
-    part_n[p, PN_OVERFLOW] = overflow
+    while True:
+        # the stream whose next copy has the lowest sender
+        src = -1
+        first = np.int64(0)
+        for p in range(parts):
+            k = at[p]
+            if k < rec_n[p, q] and (src < 0 or rec_i[p, q, k] < first):
+                src = p
+                first = rec_i[p, q, k]
+        if src < 0:
+            break
+        # that sender's copies (together in its stream)
+        k = at[src]
+        end = rec_n[src, q]
+        mtype = tx_type[first]
+        while k < end and rec_i[src, q, k] == first:
+            if k + PREFETCH_AHEAD < end:
+                # the inbox rows of a copy a few places ahead (scattered)
+                ahead = rec_j[src, q, k + PREFETCH_AHEAD]
+                prefetch(in_count, ahead)
+                prefetch(in_type, ahead)
+                prefetch(in_data, ahead)
+                prefetch(in_dist, ahead)
+            j = rec_j[src, q, k]
+            k += 1
+            c = in_count[j]
+            if c >= cap:
+                overflow += 1
+                continue
+            in_type[j, c] = mtype
+            if n_bytes == PAYLOAD_BYTES:  # a constant count: one unrolled copy
+                for b in range(PAYLOAD_BYTES):
+                    in_data[j, c, b] = tx_data[first, b]
+            else:
+                for b in range(n_bytes):
+                    in_data[j, c, b] = tx_data[first, b]
+            in_dist[j, c] = rec_d[src, q, k - 1]
+            in_count[j] = c + 1
+            delivered += 1
+        at[src] = k
+    part_n[q, PN_DELIVERED] = delivered
+    part_n[q, PN_OVERFLOW] = overflow
 
 
 @njit(cache=True)
 def radio_bad(scr):
-    """True when a sender of this tick had more receivers than its buffer row holds."""
+    """True when a stream of this tick ran out of room (the one-thread radio files it)."""
     bad = 0
     for p in range(scr.parts[0]):
         bad += scr.part_n[p, PN_BAD]
@@ -507,8 +538,9 @@ def radio_bad(scr):
 @njit(cache=True)
 def radio_file_part(p, tick, cfg, grid, pos, alive, present, tx_phase, out_on, out_type,
                     out_data, in_count, in_type, in_data, in_dist, counters, scr):
-    """Pass 2 of part ``p`` after every part's pass 1; if a buffer row overflowed, part 0
-    runs the whole tick's radio on its own instead (and counts it)."""
+    """Pass 2 of part ``p`` (receivers n p / T .. n (p + 1) / T - 1) after every part's
+    pass 1; if a stream overflowed, part 0 runs the whole tick's radio on its own
+    instead (and counts it)."""
     n = pos.shape[0]
     parts = scr.parts[0]
     if radio_bad(scr):
@@ -517,8 +549,8 @@ def radio_file_part(p, tick, cfg, grid, pos, alive, present, tx_phase, out_on, o
                               out_type, out_data, in_count, in_type, in_data, in_dist,
                               counters, scr)
         return
-    _radio_file_part(n * p // parts, n * (p + 1) // parts, n, parts, in_count, in_type,
-                     in_data, in_dist, scr, p)
+    _radio_file(n * p // parts, n * (p + 1) // parts, p, in_count, in_type, in_data,
+                in_dist, scr)
 
 
 @njit(cache=True)
@@ -537,11 +569,12 @@ def radio_count(counters, scr):
 @njit(cache=True)
 def radio_list_part(p, tick, cfg, grid, pos, alive, present, tx_phase, out_on, out_type,
                     out_data, scr):
-    """Pass 1 of part ``p`` (senders n p / T .. n (p + 1) / T - 1)."""
-    n = pos.shape[0]
+    """Pass 1 of part ``p``: the senders filed in slots n p / T .. n (p + 1) / T - 1 of
+    the n filed robots (by place, as :func:`move_part`)."""
+    n_filed = grid.start[grid.dims[0] * grid.dims[1]]
     parts = scr.parts[0]
-    _radio_list_part(n * p // parts, n * (p + 1) // parts, tick, cfg, grid, pos, alive,
-                     present, tx_phase, out_on, out_type, out_data, scr, p)
+    _radio_list(n_filed * p // parts, n_filed * (p + 1) // parts, p, tick, cfg, grid,
+                alive, present, tx_phase, out_on, out_type, out_data, scr)
 
 
 @njit(cache=True)
@@ -565,8 +598,9 @@ def radio_phase_mt(tick, cfg, grid, pos, alive, present, tx_phase, out_on, out_t
 @njit(cache=True)
 def _move_part(lo, hi, tick, cfg, grid, pos, heading, motor, alive, present, speed,
                turn_rate, flags, trig, key, out, at, at_drift):
-    """Move robots lo..hi-1 (the serial move's arithmetic); ``out[at]`` = 1 if one left
-    its slack box, else 0; ``out[at_drift]`` = 1 if one drifted (contact lists void)."""
+    """Move the robots in grid slots lo..hi-1 (the serial move's arithmetic; robots that
+    are not present have no slot); ``out[at]`` = 1 if one left its slack box, else 0;
+    ``out[at_drift]`` = 1 if one drifted (contact lists void)."""
     dt = cfg.dt
     r = cfg.radius
     leg = cfg.leg_angle
@@ -574,19 +608,27 @@ def _move_part(lo, hi, tick, cfg, grid, pos, heading, motor, alive, present, spe
     sin_leg = np.sin(leg)
     walls = cfg.arena > 0.0
     two_pi = 2.0 * np.pi
-    sxb, slot, sref = grid.sxb, grid.slot, grid.sref
+    sxb, sref = grid.sxb, grid.sref
     span = grid.geom[G_CELL] + 2.0 * grid.geom[G_MARGIN]
     drift2 = grid.geom[G_DRIFT] * grid.geom[G_DRIFT]
+    sidx = grid.sidx
+    trig_end = trig[:, 5]  # a row of trig may straddle two cache lines
     stale = False
     drift = False
-    for i in range(lo, hi):
-        if i + PREFETCH_AHEAD < hi:
-            ahead = slot[i + PREFETCH_AHEAD]
-            prefetch(sxb, ahead)
-            prefetch(sref, ahead)
-            prefetch(flags, ahead)
+    for s in range(lo, hi):
+        i = sidx[s]
+        if s + PREFETCH_AHEAD < hi:
+            # the robot a few slots ahead: its rows by index lie scattered
+            ahead = sidx[s + PREFETCH_AHEAD]
+            prefetch(pos, ahead)
+            prefetch(trig, ahead)
+            prefetch(trig_end, ahead)
+            prefetch(heading, ahead)
+            prefetch(speed, ahead)
+            prefetch(turn_rate, ahead)
+            prefetch(motor, ahead)
         m = motor[i]
-        if m == 0 or not alive[i] or not present[i]:
+        if m == 0 or not alive[i]:
             continue
         h = heading[i]
         if trig[i, 0] != h:
@@ -646,7 +688,6 @@ def _move_part(lo, hi, tick, cfg, grid, pos, heading, motor, alive, present, spe
         trig[i, 0] = h_new
         trig[i, 1] = ch
         trig[i, 2] = sh
-        s = slot[i]
         sxb[s, P_X] = x
         sxb[s, P_Y] = y
         bx = sref[s, R_BX]
@@ -665,8 +706,10 @@ def _move_part(lo, hi, tick, cfg, grid, pos, heading, motor, alive, present, spe
 @njit(cache=True)
 def move_part(p, tick, cfg, grid, pos, heading, motor, alive, present, speed, turn_rate,
               flags, trig, scr):
-    """Move robots n p / T .. n (p + 1) / T - 1; part_n[p, PN_STALE] = left a box."""
-    n = pos.shape[0]
+    """Move the robots in slots n p / T .. n (p + 1) / T - 1 of the n filed ones (by
+    slot, so that a thread moves the robots of the strips it resolves first in the
+    collision phase: see :func:`collide_pass_grab`); part_n[p, PN_STALE] = left a box."""
+    n = grid.start[grid.dims[0] * grid.dims[1]]
     parts = scr.parts[0]
     _move_part(n * p // parts, n * (p + 1) // parts, tick, cfg, grid, pos, heading, motor,
                alive, present, speed, turn_rate, flags, trig, scr.key[0], scr.part_n[p],
@@ -725,7 +768,7 @@ def strip_bounds(grid, strips):
     return n_strips
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def _collide_strip(lo, hi, cur_bit, nxt_bit, lists_ok, cfg, grid, pos, motor, flags, near,
                    near_d2, work, out):
     """One pass over the slots lo..hi-1 of a strip (see module doc); writes examined,
@@ -896,19 +939,24 @@ def collide_begin(grid, scr):
     cs[CS_STRIPS] = strip_bounds(grid, scr.strips)
     cs[CS_GRAB0] = 0
     cs[CS_GRAB1] = 0
+    cs[CS_FRONT0:CS_BACK1 + 1] = 0
+    cs[CS_PASSNO] += 1
     if grid.state[S_DRIFTED] != 0:
         new_epoch(grid)
 
 
 @njit(cache=True, inline="always")
-def _lists_ok(colour, cs, strip_out):
-    """Contact lists are good for strips of ``colour`` in this pass: the epoch began
-    before the pass (so nobody has drifted before it), and for colour 1 no colour-0
-    strip of the pass drifted a robot."""
-    drifts = 0
-    if colour == 1:
-        for k in range(0, cs[CS_STRIPS], 2):
-            drifts += strip_out[k, SO_DRIFT]
+def _lists_ok(k, n_strips, strip_out):
+    """Contact lists are good for strip ``k`` in this pass: the epoch began before the
+    pass (so nobody had drifted before it), and for a colour-1 strip neither colour-0
+    strip next to it drifted a robot in this pass (only those two can move robots that
+    the strip's lists hold: see :func:`_collide_strip`). Lists are a cache: results do
+    not depend on whether they are used."""
+    if k % 2 == 0:
+        return True
+    drifts = strip_out[k - 1, SO_DRIFT]
+    if k + 1 < n_strips:
+        drifts += strip_out[k + 1, SO_DRIFT]
     return drifts == 0
 
 
@@ -919,30 +967,67 @@ def collide_strips(p, parts, colour, cfg, grid, pos, motor, flags, scr):
     n_strips = cs[CS_STRIPS]
     cur_bit = cs[CS_CUR]
     n_col = (n_strips + 1 - colour) // 2
-    ok = _lists_ok(colour, cs, scr.strip_out)
     for q in range(p, n_col, parts):
         k = 2 * q + colour
+        ok = _lists_ok(k, n_strips, scr.strip_out)
         _collide_strip(scr.strips[k], scr.strips[k + 1], cur_bit, 3 - cur_bit, ok, cfg, grid,
                        pos, motor, flags, scr.near[p], scr.near_d2[p], scr.work[p],
                        scr.strip_out[k])
+
+
+@njit(cache=True, inline="always")
+def _claim_strip(cs, colour, n_col, from_back, alone, mine):
+    """The next unclaimed strip of ``colour`` (0 .. n_col - 1) counted from the front or
+    the back, or -1 when all are claimed: every strip is claimed exactly once, the
+    front claims 0, 1, ... and the back claims n_col - 1, n_col - 2, ... ``alone``:
+    this thread is the only one claiming from its end (two threads), so ``mine`` (how
+    many it claimed before) counts that end and no shared counter of the end is needed
+    (one atomic step a claim instead of two)."""
+    if atomic_add(cs, CS_GRAB0 + colour, 1) >= n_col:
+        return -1
+    if alone:
+        at = mine
+    elif from_back:
+        at = atomic_add(cs, CS_BACK0 + colour, 1)
+    else:
+        at = atomic_add(cs, CS_FRONT0 + colour, 1)
+    return n_col - 1 - at if from_back else at
 
 
 @njit(cache=True)
-def collide_strips_grab(p, colour, cfg, grid, pos, motor, flags, scr):
-    """Thread ``p`` resolves strips of ``colour`` taken one at a time from a shared
-    counter until none is left (the threads that finish first take more)."""
+def collide_pass_grab(p, cfg, grid, pos, motor, flags, scr):
+    """Thread ``p``'s share of a collision pass: strips of colour 0, then of colour 1,
+    taken one at a time until none is left (the threads that finish first take more).
+    The first half of the threads take strips from the front, the others from the
+    back, so a thread mostly resolves the strips whose robots it moved
+    (:func:`move_part`) and their data stays in its core's cache. A colour-1 strip
+    starts as soon as the two colour-0 strips next to it are done (the only ones whose
+    rows it touches), not when all are: no barrier between the colours."""
     cs = scr.cstate
     n_strips = cs[CS_STRIPS]
     cur_bit = cs[CS_CUR]
-    n_col = (n_strips + 1 - colour) // 2
-    ok = _lists_ok(colour, cs, scr.strip_out)
-    q = atomic_add(cs, CS_GRAB0 + colour, 1)
-    while q < n_col:
-        k = 2 * q + colour
-        _collide_strip(scr.strips[k], scr.strips[k + 1], cur_bit, 3 - cur_bit, ok, cfg, grid,
-                       pos, motor, flags, scr.near[p], scr.near_d2[p], scr.work[p],
-                       scr.strip_out[k])
-        q = atomic_add(cs, CS_GRAB0 + colour, 1)
+    passno = cs[CS_PASSNO]
+    from_back = 2 * p >= scr.parts[0]
+    near, near_d2, work, strips, strip_out = scr.near[p], scr.near_d2[p], scr.work[p], \
+        scr.strips, scr.strip_out
+    done = scr.strip_done
+    alone = scr.parts[0] == 2
+    for colour in range(2):
+        n_col = (n_strips + 1 - colour) // 2
+        mine = 0
+        q = _claim_strip(cs, colour, n_col, from_back, alone, mine)
+        while q >= 0:
+            mine += 1
+            k = 2 * q + colour
+            if colour == 1:
+                wait_for(done, 8 * (k - 1), passno)
+                if k + 1 < n_strips:
+                    wait_for(done, 8 * (k + 1), passno)
+            _collide_strip(strips[k], strips[k + 1], cur_bit, 3 - cur_bit,
+                           _lists_ok(k, n_strips, strip_out), cfg, grid, pos, motor,
+                           flags, near, near_d2, work, strip_out[k])
+            atomic_store(done, 8 * k, passno)
+            q = _claim_strip(cs, colour, n_col, from_back, alone, mine)
 
 
 @njit(cache=True)
@@ -981,6 +1066,8 @@ def collide_after_pass(cfg, grid, pos, present, flags, scr):
         cs[CS_STRIPS] = strip_bounds(grid, scr.strips)
         cs[CS_GRAB0] = 0
         cs[CS_GRAB1] = 0
+        cs[CS_FRONT0:CS_BACK1 + 1] = 0
+        cs[CS_PASSNO] += 1
 
 
 @njit(cache=True)
@@ -1014,8 +1101,8 @@ def no_part_step(lo, hi, tick, alive, in_count, in_type, in_data, in_dist, motor
 
 @njit(cache=True, inline="always")
 def part_bounds(p, n, scr):
-    """Robots ``lo .. hi - 1`` of part ``p`` (by index: the radio's receivers, the move's
-    and the controller part's robots)."""
+    """Robots ``lo .. hi - 1`` of part ``p`` (by index: the radio's receivers and the
+    controller part's robots)."""
     parts = scr.parts[0]
     return n * p // parts, n * (p + 1) // parts
 

@@ -59,6 +59,23 @@ def atomic_load(typingctx, arr, idx):
 
 
 @intrinsic
+def atomic_store(typingctx, arr, idx, val):
+    """``arr[idx] = val`` as one atomic store (int64 array): everything this thread wrote
+    before it is visible to a thread that reads the value with :func:`atomic_load`."""
+    if not (isinstance(arr, types.Array) and arr.dtype == types.int64 and arr.ndim == 1
+            and isinstance(idx, types.Integer) and isinstance(val, types.Integer)):
+        return None
+
+    def codegen(context, builder, signature, args):
+        ptr = _item_pointer(context, builder, signature.args[0], args[0], args[1])
+        value = context.cast(builder, args[2], signature.args[2], types.int64)
+        builder.store_atomic(value, ptr, "seq_cst", 8)
+        return context.get_dummy_value()
+
+    return types.void(arr, idx, val), codegen
+
+
+@intrinsic
 def sched_yield(typingctx):
     """Call the C library's ``sched_yield`` (let another runnable thread have the core)."""
 
@@ -92,6 +109,17 @@ def arrive(sync, threads):
 def release(sync):
     """Let the threads waiting in :func:`arrive` go on."""
     atomic_add(sync, 1, 1)
+
+
+@njit(cache=True)
+def wait_for(arr, idx, value):
+    """Wait until ``arr[idx]`` (int64, written with :func:`atomic_store` by another
+    thread) equals ``value``; spins, then yields as :func:`barrier` does."""
+    spins = 0
+    while atomic_load(arr, idx) != value:
+        spins += 1
+        if spins > SPINS_BEFORE_YIELD:
+            sched_yield()
 
 
 @njit(cache=True)
