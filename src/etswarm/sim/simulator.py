@@ -274,8 +274,9 @@ class ThreadChooser:
     Results do not depend on the count, only the speed does: on a machine whose cores are
     busy with other work, threads that wait for each other at every phase can be slower
     than one. Calls are sized to about ``SUB_CALL_S`` seconds; the count not in use is
-    tried now and then for an eighth of a call (after 4, 8, ... 64 calls while it keeps
-    losing) and the faster one (seconds per tick, averaged over its recent calls) is
+    tried now and then for half a call (after 4, 8, 16 calls while it keeps losing; a
+    shorter try mostly measured the threads waking up and the grid moving between the
+    cores' caches) and the faster one (seconds per tick, averaged over its recent calls) is
     used. ``adaptive=False`` always uses ``most``. ``ticks_on`` counts the ticks run on
     each count.
     """
@@ -304,9 +305,9 @@ class ThreadChooser:
         return other if self.trying else self.current
 
     def call_ticks(self) -> int:
-        """Ticks for the next call: about SUB_CALL_S seconds, an eighth of that for a try
-        of the count not in use (which may be much slower)."""
-        return max(1, self.ticks_per_call // 8) if self.trying else self.ticks_per_call
+        """Ticks for the next call: about SUB_CALL_S seconds, half that for a try of the
+        count not in use (which may be much slower)."""
+        return max(1, self.ticks_per_call // 2) if self.trying else self.ticks_per_call
 
     def record(self, threads: int, ticks: int, seconds: float) -> None:
         """The last call ran ``ticks`` ticks on ``threads`` threads in ``seconds``."""
@@ -327,4 +328,4 @@ class ThreadChooser:
             self.current = threads
             self.gap = 4
         else:
-            self.gap = min(2 * self.gap, 64)
+            self.gap = min(2 * self.gap, 16)
