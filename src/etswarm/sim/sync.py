@@ -29,11 +29,17 @@ def _item_pointer(context, builder, arr_type, arr, idx):
     return builder.gep(array.data, [idx])
 
 
+def _is_int64_vector(arr, idx) -> bool:  # type: ignore[no-untyped-def]
+    """The numba types of an atomic operation's target: a 1-D int64 array and an integer
+    index."""
+    return (isinstance(arr, types.Array) and arr.dtype == types.int64 and arr.ndim == 1
+            and isinstance(idx, types.Integer))
+
+
 @intrinsic
 def atomic_add(typingctx, arr, idx, val):
     """``arr[idx] += val`` as one atomic step (int64 array); returns the old value."""
-    if not (isinstance(arr, types.Array) and arr.dtype == types.int64 and arr.ndim == 1
-            and isinstance(idx, types.Integer) and isinstance(val, types.Integer)):
+    if not (_is_int64_vector(arr, idx) and isinstance(val, types.Integer)):
         return None
 
     def codegen(context, builder, signature, args):
@@ -47,8 +53,7 @@ def atomic_add(typingctx, arr, idx, val):
 @intrinsic
 def atomic_load(typingctx, arr, idx):
     """``arr[idx]`` read atomically (int64 array; never cached in a register)."""
-    if not (isinstance(arr, types.Array) and arr.dtype == types.int64 and arr.ndim == 1
-            and isinstance(idx, types.Integer)):
+    if not _is_int64_vector(arr, idx):
         return None
 
     def codegen(context, builder, signature, args):
@@ -62,8 +67,7 @@ def atomic_load(typingctx, arr, idx):
 def atomic_store(typingctx, arr, idx, val):
     """``arr[idx] = val`` as one atomic store (int64 array): everything this thread wrote
     before it is visible to a thread that reads the value with :func:`atomic_load`."""
-    if not (isinstance(arr, types.Array) and arr.dtype == types.int64 and arr.ndim == 1
-            and isinstance(idx, types.Integer) and isinstance(val, types.Integer)):
+    if not (_is_int64_vector(arr, idx) and isinstance(val, types.Integer)):
         return None
 
     def codegen(context, builder, signature, args):
