@@ -50,7 +50,8 @@ F_WALK_COLLECT = 8  # the census walker records the tags of robots heard nearer 
 F_PAIR_AIM = 9  # the pair window is centred this far from d (negative: nearer)
 F_WIDEN_MAX = 10  # a searcher long at the shape widens its tolerances up to this factor
 F_AIM_RELAX = 11  # ticks at the shape over which the pair window's centre moves back to d
-N_CF = 12
+F_CONSIST_WIDEN = 12  # a widened pocket candidate's consistency tolerance grows up to this
+N_CF = 13
 
 #: Census methods (``ETParams.census``): the paper's periphery walk, or a spanning tree.
 CENSUS_METHODS = ("tree", "walk")
@@ -93,6 +94,11 @@ class ETParams:
     #: this factor (at pockets of three or more placed neighbours); 1 never widens.
     widen_max: float = 3.0
     consistency_tol_mm: float = 16.0
+    #: At a pocket (see ``widen_max``) the consistency tolerance widens with the pair
+    #: window, up to this factor: where the lattice has pinched a site's mouth narrower
+    #: than a body, a searcher can only stop at the mouth, farther from the robot inside
+    #: than the site is. 1 never widens it.
+    consistency_widen_max: float = 1.0
     follow_offset_mm: float = 0.0
     closing_speed_mm_s: float = 5.0
     clearance_mm: float = 38.0
@@ -160,9 +166,9 @@ class ETParams:
                     raise EtswarmError(f"orbit must be one of {ORBIT_MODES}, got {value!r}")
             elif f.name in SIGNED:
                 continue
-            elif f.name == "widen_max":
+            elif f.name in ("widen_max", "consistency_widen_max"):
                 if not value >= 1:
-                    raise EtswarmError(f"ET parameter widen_max must be >= 1, got {value}")
+                    raise EtswarmError(f"ET parameter {f.name} must be >= 1, got {value}")
             elif f.name in NON_NEGATIVE:
                 if not value >= 0:
                     raise EtswarmError(f"ET parameter {f.name} must be >= 0, got {value}")
@@ -220,6 +226,7 @@ class ETParams:
         cf[F_WIDEN_MAX] = self.widen_max
         cf[F_AIM_RELAX] = self.pair_aim_relax_s * ticks_per_s
         cf[F_CONSIST_TOL] = self.consistency_tol_mm
+        cf[F_CONSIST_WIDEN] = self.consistency_widen_max
         cf[F_YIELD_DIST] = self.yield_distance_mm
         cf[F_FOLLOW_OFFSET] = self.follow_offset_mm
         cf[F_CLOSING] = self.closing_speed_mm_s / ticks_per_s

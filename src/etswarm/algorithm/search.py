@@ -79,6 +79,7 @@ from etswarm.algorithm.params import (
     F_CLEARANCE,
     F_CLOSING,
     F_CONSIST_TOL,
+    F_CONSIST_WIDEN,
     F_FOLLOW_OFFSET,
     F_PAIR_AIM,
     F_PAIR_TOL,
@@ -88,6 +89,11 @@ from etswarm.algorithm.params import (
 )
 from etswarm.algorithm.pocket import POCKET_AFTER_TICKS, pocket_site
 from etswarm.algorithm.site_memory import is_held, remember_heard, shuts_in, site_taken
+
+#: A widened candidate's heard lattice neighbours must stand within d + this (mm): a
+#: neighbour much farther is heard only now and then, and a placed robot that stops
+#: hearing its neighbours goes to Danger (radio range 70 mm for d = 40 mm).
+ADJACENT_SLACK_MM = 20.0
 
 #: Readings of a searching robot older than this (ticks) are ignored for steering.
 SEARCHER_FRESH_TICKS = 31
@@ -384,7 +390,10 @@ def find_site(  # type: ignore[no-untyped-def]
     whole shape, else from the robots it hears (``encloses_a_site``, ``closes_a_hole``).
     ``tol_scale`` widens the pair and balance tolerances; a candidate gets the wider window
     only when at least ``wide_min`` placed robots of its neighbour sites were heard (a
-    pocket, where the site is hard to mistake), else the plain one. ``pair_aim`` (mm) is
+    pocket, where the site is hard to mistake), else the plain one; such a pocket candidate
+    may also disagree with a heard robot by up to the consistency tolerance times
+    ``min(tol_scale, consistency_widen_max)``, but never hear a robot of a neighbouring
+    site farther than d + ``ADJACENT_SLACK_MM``. ``pair_aim`` (mm) is
     the window's centre (``window_centre``).
 
     Returns ``(found, x, y, min_active_ts)``; the best-fitting candidate wins.
@@ -392,6 +401,8 @@ def find_site(  # type: ignore[no-untyped-def]
     d = cf[F_SPACING]
     pair_tol = cf[F_PAIR_TOL] * tol_scale
     consist_tol = cf[F_CONSIST_TOL]
+    # a pocket candidate may disagree more (checked against the plain one below)
+    consist_wide = consist_tol * min(tol_scale, cf[F_CONSIST_WIDEN])
     second_ring = ci[C_SECOND_RING]
     hole_memory = ci[C_HOLE_MEMORY] == 1
     fresh = ci[C_TICKS_NB_FRESH]
@@ -461,6 +472,7 @@ def find_site(  # type: ignore[no-untyped-def]
                 ruled_out_mirror = side == outer_side or site_taken(i, c2x, c2y, nb)
                 ok = True
                 err = 0.0
+                worst = 0.0
                 min_ts = -1
                 n_adjacent = 0
                 for j in range(slots):
@@ -471,10 +483,13 @@ def find_site(  # type: ignore[no-untyped-def]
                     pred = lattice_distance(cx, cy, jx, jy) * d
                     if nb[i, j, NB_LAST] >= since:
                         e = abs(nb_dist[i, j] - pred)
-                        if e > consist_tol:
+                        if e > consist_wide or (
+                            pred < 1.2 * d and nb_dist[i, j] > d + ADJACENT_SLACK_MM
+                        ):
                             ok = False
                             break
                         err += e
+                        worst = max(worst, e)
                         pred2 = lattice_distance(c2x, c2y, jx, jy) * d
                         if abs(nb_dist[i, j] - pred2) > consist_tol:
                             ruled_out_mirror = True
@@ -493,7 +508,9 @@ def find_site(  # type: ignore[no-untyped-def]
                 if ok and strict and reported_but_unheard(i, cx, cy, since, nb):
                     ok = False
                 if ok and tol_scale > 1.0 and n_adjacent < wide_min:
-                    ok = in_window(nb_dist[i, a], nb_dist[i, b], pair_aim, cf, 1.0)
+                    ok = worst <= consist_tol and in_window(
+                        nb_dist[i, a], nb_dist[i, b], pair_aim, cf, 1.0
+                    )
                 if ok and ruled_out_mirror and min_ts >= 0 and err < best_err:
                     if hole_memory and shuts_in(cx, cy, held_i, ox, oy, gene_flag, ci):
                         continue
