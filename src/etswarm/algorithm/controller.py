@@ -26,6 +26,7 @@ from etswarm.algorithm.kernel_util import (
     STOP,
 )
 from etswarm.algorithm.memory import (
+    NB_ANCHORED,
     NB_EEPOCH,
     NB_EHOP,
     NB_ELAST,
@@ -49,6 +50,7 @@ from etswarm.algorithm.memory import (
     R_EPOCH,
     R_HOP,
     R_LEADER,
+    R_LOST_SINCE,
     R_MASK,
     R_PARENT,
     R_PEND_EPOCH,
@@ -123,6 +125,7 @@ def table_slot(i, sender, nb):  # type: ignore[no-untyped-def]
     nb[i, row, NB_EPOCH] = -1
     nb[i, row, NB_RELEASED] = 0
     nb[i, row, NB_MASK] = 0
+    nb[i, row, NB_ANCHORED] = 0
     return -row - 1
 
 
@@ -194,6 +197,7 @@ def ingest(i, k, tick, ri, in_type, in_data, in_dist, nb, nb_dist):  # type: ign
     else:
         nb[i, slot, NB_RELEASED] = int(in_data[i, k, 7]) | (int(in_data[i, k, 8]) << 8)
         nb[i, slot, NB_HOPS] = int(in_data[i, k, 5])
+        nb[i, slot, NB_ANCHORED] = int(in_data[i, k, 6])
     return kind
 
 
@@ -246,7 +250,7 @@ def encode(i, tick, ri, out_on, out_type, out_data):  # type: ignore[no-untyped-
         out_data[i, 3] = ri[i, R_QMIN] & 0xFF
         out_data[i, 4] = (ri[i, R_QMIN] >> 8) & 0xFF
         out_data[i, 5] = min(ri[i, R_SHAPE_HOPS], 255)
-        out_data[i, 6] = 0
+        out_data[i, 6] = 1 if state == SEARCH and ri[i, R_LOST_SINCE] == 0 else 0
         out_data[i, 7] = ri[i, R_RELEASED] & 0xFF
         out_data[i, 8] = (ri[i, R_RELEASED] >> 8) & 0xFF
 

@@ -143,7 +143,8 @@ NB_ESUB = 13  # election: its subtree count
 NB_ELAST = 14  # tick of its last election message
 NB_EPOCH = 15  # the target epoch the robot works for (from its status message's type)
 NB_HOPS = 16  # a Queued robot's hops to the target's placed robots (``release``)
-NB_FIELDS = 17
+NB_ANCHORED = 17  # 1: a searching robot that hears a stationary robot (a lost one's beacon)
+NB_FIELDS = 18
 
 SLOT_N = 0  # cells of the target
 SLOT_LIMIT = 1  # robots the repository releases for it

@@ -13,7 +13,9 @@ byte   placed robot (Inactive ..   Queued / Search robot
 4      tag Y (int8)                lowest Queued ID heard, high byte
 5-6    timestep TS (uint16)        5: hops to the robots placed on the
                                    target (after a regeneration, see
-                                   ``release``; 255 = no way known); 6: 0
+                                   ``release``; 255 = no way known); 6:
+                                   a searcher's 1 when it hears a
+                                   stationary robot (else 0)
 7      neighbour-site bits (bit k  robots released so far, low byte
        = a robot holds the site in
        lattice direction k)

@@ -23,6 +23,7 @@ from etswarm.algorithm.kernel_util import (
     set_state,
 )
 from etswarm.algorithm.memory import (
+    NB_ANCHORED,
     NB_ID,
     NB_LAST,
     NB_MASK,
@@ -546,6 +547,8 @@ def search_rule(  # type: ignore[no-untyped-def]
     nearest_searcher = FAR
     nearest_lower_searcher = FAR
     lower_slot = -1
+    beacon_est = FAR
+    beacon_slot = -1
     for m in range(slots):
         if nb[i, m, NB_ID] < 0 or tick - nb[i, m, NB_LAST] > steer_fresh:
             continue
@@ -556,6 +559,9 @@ def search_rule(  # type: ignore[no-untyped-def]
             if tick - nb[i, m, NB_LAST] > SEARCHER_FRESH_TICKS:
                 continue  # a moving robot's old reading says nothing about now
             nearest_searcher = min(nearest_searcher, est)
+            if nb[i, m, NB_ANCHORED] == 1 and est < beacon_est:
+                beacon_est = est
+                beacon_slot = m
             if nb[i, m, NB_ID] < i and est < nearest_lower_searcher:
                 nearest_lower_searcher = est
                 lower_slot = m
@@ -567,6 +573,7 @@ def search_rule(  # type: ignore[no-untyped-def]
             queued_est = est
             queued_slot = m
     lost = False
+    beacon = False
     reading = FAR
     if placed_slot >= 0:
         reading = nb_dist[i, placed_slot]
@@ -590,10 +597,14 @@ def search_rule(  # type: ignore[no-untyped-def]
         follow_reference(i, ri, nb, queued_slot, moving)
         track_trend(i, ri, nb, nb_dist, queued_slot, R_REF_ID)
     else:
-        # Nothing stationary in earshot: circle clockwise to find the group again.
+        # Nothing stationary in earshot: circle clockwise to find the group again, or
+        # follow a searcher that hears the group (it leads back into earshot).
         lost = True
         nearest = FAR
         obstacle = nearest_searcher
+        if beacon_slot >= 0:
+            beacon = True
+            reading = nb_dist[i, beacon_slot]
 
     if not lost:
         ri[i, R_LOST_SINCE] = 0
@@ -714,7 +725,7 @@ def search_rule(  # type: ignore[no-untyped-def]
     # Only the first formation's repository is a queue to walk along; after a
     # regeneration the Queued robots stand packed round the shape.
     along_repository = placed_slot < 0 and ci[C_QUEUE_STRIDE] == 1 and ri[i, R_EPOCH] == 0
-    if obstacle < clearance or nearest < clearance or (not lost and reading < aim):
+    if obstacle < clearance or nearest < clearance or ((not lost or beacon) and reading < aim):
         if along_repository and obstacle >= clearance and reading >= aim - STRIDE_BAND_MM:
             motor[i] = FORWARD  # the repository is no place to settle: stride along it
             return
@@ -722,6 +733,8 @@ def search_rule(  # type: ignore[no-untyped-def]
         ri[i, R_TOWARD_SINCE] = tick
     elif along_repository and reading <= aim + STRIDE_BAND_MM:
         motor[i] = FORWARD
+    elif beacon:
+        motor[i] = toward
     elif lost:
         motor[i] = lost_motion(tick, ri[i, R_LOST_SINCE] - 1)
     elif tick - ri[i, R_TOWARD_SINCE] > CIRCLING_TICKS and ri[i, R_REF_TREND] < 0:
