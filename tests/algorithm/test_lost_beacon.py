@@ -28,9 +28,9 @@ TICK = 100_000
 LOST_FOR = 31 * 2000
 
 
-def steer_lost(anchored: int) -> int:
+def steer_lost(anchored: int, beacon: str = "on") -> int:
     """Motor command of searcher 0, lost for ``LOST_FOR`` ticks, hearing only searcher 5
-    at 55 mm (anchored or not)."""
+    at 55 mm (anchored or not), with the ``lost_beacon`` option ``beacon``."""
     ri, nb, nb_dist = allocate(1)
     begin_search(0, TICK - LOST_FOR - 10, ri)
     ri[0, R_LOST_SINCE] = TICK - LOST_FOR + 1
@@ -41,7 +41,7 @@ def steer_lost(anchored: int) -> int:
     nb_dist[0, 0] = 55.0
     gene = np.ones((3, 3), dtype=np.uint8)
     gene_nn = np.full((3, 3), 6, dtype=np.int8)
-    ci, cf = ETParams().pack(31, gene_x0=-1, gene_y0=-1)
+    ci, cf = ETParams(lost_beacon=beacon).pack(31, gene_x0=-1, gene_y0=-1)
     motor = np.full(1, FORWARD, dtype=np.uint8)
     held = np.zeros((1, 1, 1), dtype=np.uint8)
     search_rule(0, TICK, True, ri, nb, nb_dist, motor, gene, gene_nn, ci, cf, held, 0, 0)
@@ -53,6 +53,7 @@ def test_a_lost_searcher_turns_towards_a_searcher_that_hears_the_group() -> None
     assert spiral == FORWARD  # what it would do on its own at this tick
     assert steer_lost(anchored=0) == spiral  # another lost searcher is no guide
     assert steer_lost(anchored=1) == RIGHT  # clockwise orbit: the group on its right
+    assert steer_lost(anchored=1, beacon="off") == spiral  # the option off: the spiral only
 
 
 def test_a_searcher_says_whether_it_hears_a_stationary_robot() -> None:

@@ -36,7 +36,8 @@ C_POCKET = 20  # 1: a searcher long at the shape may take a site from the robots
 C_RELEASE_FAR = 21  # 1: a regenerated remnant releases its Queued robots farthest first
 C_QUEUE_STRIDE = 22  # 1: along the repository a searcher near its aim drives straight on
 C_SILENT_SITES = 23  # 1: electing robots note and flood the sites that fell silent
-N_CI = 24
+C_LOST_BEACON = 24  # 1: a lost searcher follows a searcher that hears a stationary robot
+N_CI = 25
 
 F_SPACING = 0  # lattice spacing d
 F_PAIR_TOL = 1  # two references within this of d trigger a site candidate
@@ -146,6 +147,10 @@ class ETParams:
     #: Leader keeps the scaled target off those sites ("on", see ``silent``), or places it
     #: from the robots it hears alone ("off").
     silent_sites: str = "on"
+    #: A lost searcher (no stationary robot heard) follows a searcher that hears one
+    #: ("on"), or only drives its widening spiral ("off"). Off by default: over 20 seeds of
+    #: 13 shapes 209 of 260 formed with it against 214 (docs/algorithm.md, "lost").
+    lost_beacon: str = "off"
 
     def __post_init__(self) -> None:
         for f in fields(self):
@@ -154,7 +159,8 @@ class ETParams:
                 if value not in CENSUS_METHODS:
                     raise EtswarmError(f"census must be one of {CENSUS_METHODS}, got {value!r}")
             elif f.name in (
-                "creep", "second_ring", "hole_memory", "pocket", "queue_stride", "silent_sites"
+                "creep", "second_ring", "hole_memory", "pocket", "queue_stride", "silent_sites",
+                "lost_beacon",
             ):
                 if value not in ("on", "off"):
                     raise EtswarmError(f"{f.name} must be 'on' or 'off', got {value!r}")
@@ -218,6 +224,7 @@ class ETParams:
         ci[C_POCKET] = 1 if self.pocket == "on" else 0
         ci[C_QUEUE_STRIDE] = 1 if self.queue_stride == "on" else 0
         ci[C_SILENT_SITES] = 1 if self.silent_sites == "on" else 0
+        ci[C_LOST_BEACON] = 1 if self.lost_beacon == "on" else 0
         ci[C_RELEASE_FAR] = 1 if self.release_order == "far" else 0
         cf = np.zeros(N_CF, dtype=np.float64)
         cf[F_SPACING] = self.spacing_mm

@@ -66,6 +66,7 @@ from etswarm.algorithm.memory import (
 from etswarm.algorithm.params import (
     C_CREEP,
     C_HOLE_MEMORY,
+    C_LOST_BEACON,
     C_ORBIT_BOUNCE,
     C_POCKET,
     C_QUEUE_STRIDE,
@@ -602,7 +603,7 @@ def search_rule(  # type: ignore[no-untyped-def]
         lost = True
         nearest = FAR
         obstacle = nearest_searcher
-        if beacon_slot >= 0:
+        if beacon_slot >= 0 and ci[C_LOST_BEACON] == 1:
             beacon = True
             reading = nb_dist[i, beacon_slot]
 
