@@ -252,7 +252,9 @@ def encode(i, tick, ri, out_on, out_type, out_data):  # type: ignore[no-untyped-
 
 
 @njit
-def et_step(  # type: ignore[no-untyped-def]
+def et_part(  # type: ignore[no-untyped-def]
+    lo,
+    hi,
     tick,
     alive,
     in_count,
@@ -265,13 +267,20 @@ def et_step(  # type: ignore[no-untyped-def]
     out_type,
     out_data,
     mem,
-    rng,
 ):
-    """One control tick for every robot (simulator fast-path contract)."""
+    """One control tick for robots ``lo .. hi - 1`` (the controller protocol's ``part_step``).
+
+    A robot's work reads and writes only its own rows (``ri``, ``nb``, ``nb_dist``,
+    ``walk_seen``, ``held``, its motor, LED and outgoing message) and reads the shared
+    genes, ``slot_info`` and constants, which change only between kernel calls (the host
+    adds targets). The one shared write is the stop flag, set to 1 by a robot that needs
+    the host (a Leader's request): parts on different threads may set it at the same time,
+    and only ever to the same value, read after the threads meet. So parts may run at once
+    on disjoint ranges, in any order, and give what one pass over all robots gives.
+    """
     stop, ri, nb, nb_dist, gene_flag, gene_nn, slot_info, ci, cf, walk_seen, held = mem
-    n = ri.shape[0]
     every = ci[C_EVAL_EVERY]
-    for i in range(n):
+    for i in range(lo, hi):
         if not alive[i]:
             continue
         new_msgs = False
@@ -328,3 +337,48 @@ def et_step(  # type: ignore[no-untyped-def]
             motor[i] = STOP
         led[i] = ri[i, R_STATE]
         encode(i, tick, ri, out_on, out_type, out_data)
+
+
+@njit
+def et_rest(  # type: ignore[no-untyped-def]
+    tick,
+    alive,
+    in_count,
+    in_type,
+    in_data,
+    in_dist,
+    motor,
+    led,
+    out_on,
+    out_type,
+    out_data,
+    mem,
+    rng,
+):
+    """The controller protocol's ``rest_step``: nothing is left after :func:`et_part` (the
+    ET controller draws no random numbers and robots share no writes but the stop flag)."""
+    return
+
+
+@njit
+def et_step(  # type: ignore[no-untyped-def]
+    tick,
+    alive,
+    in_count,
+    in_type,
+    in_data,
+    in_dist,
+    motor,
+    led,
+    out_on,
+    out_type,
+    out_data,
+    mem,
+    rng,
+):
+    """One control tick for every robot (simulator fast-path contract): :func:`et_part`
+    over all robots, then :func:`et_rest`."""
+    et_part(0, alive.shape[0], tick, alive, in_count, in_type, in_data, in_dist, motor, led,
+            out_on, out_type, out_data, mem)
+    et_rest(tick, alive, in_count, in_type, in_data, in_dist, motor, led, out_on, out_type,
+            out_data, mem, rng)
