@@ -95,7 +95,7 @@ from etswarm.algorithm.search import search_rule
 from etswarm.algorithm.silent import encode_silent, ingest_silent, note_silent, sends_silent
 
 
-@njit
+@njit(inline="always")
 def table_slot(i, sender, nb):  # type: ignore[no-untyped-def]
     """Index of ``sender``'s row in robot i's neighbour table; a new robot takes a free
     row, else the one heard longest ago (returned negated minus one: -(row) - 1)."""
@@ -135,7 +135,7 @@ def near_epoch(own, wrapped, modulus):  # type: ignore[no-untyped-def]
     return own + delta
 
 
-@njit
+@njit(inline="always")
 def ingest(i, k, tick, ri, in_type, in_data, in_dist, nb, nb_dist):  # type: ignore[no-untyped-def]
     """Store message k of robot i's inbox in its neighbour table (layouts in ``messages``).
 
@@ -197,7 +197,7 @@ def ingest(i, k, tick, ri, in_type, in_data, in_dist, nb, nb_dist):  # type: ign
     return kind
 
 
-@njit
+@njit(inline="always")
 def encode(i, tick, ri, out_on, out_type, out_data):  # type: ignore[no-untyped-def]
     """Write robot i's next broadcast (layouts in ``messages``): its election message while
     electing (every other period its status instead while census walking, see
@@ -280,7 +280,12 @@ def et_part(  # type: ignore[no-untyped-def]
     """
     stop, ri, nb, nb_dist, gene_flag, gene_nn, slot_info, ci, cf, walk_seen, held = mem
     every = ci[C_EVAL_EVERY]
+    phase = (tick + lo) % every  # (tick + i) % every, kept without a division per robot
     for i in range(lo, hi):
+        due = phase == 0
+        phase += 1
+        if phase == every:
+            phase = 0
         if not alive[i]:
             continue
         new_msgs = False
@@ -305,7 +310,6 @@ def et_part(  # type: ignore[no-untyped-def]
             catch_up(i, tick, ri, nb, gene_flag, gene_nn, slot_info, ci)
         state = ri[i, R_STATE]
         slot = ri[i, R_TSLOT]
-        due = (tick + i) % every == 0
         if ri[i, R_PHASE] == PHASE_ELECTING and walking(ri[i, R_WALK]):
             walk_rule(i, tick, ri, nb, nb_dist, motor, walk_seen, gene_flag[slot], ci, cf, stop)
             led[i] = ri[i, R_STATE]
