@@ -5,12 +5,14 @@ for a shape of N cells with N robots, after the kernel is compiled.
 Formation: formed share, median formation time (simulated) and median wall time over seeds,
 and the number of runs that ended with a tag held by two robots.
 
-    .venv/bin/python benchmarks/bench_et.py speed [--seconds 600]
+    .venv/bin/python benchmarks/bench_et.py speed [--seconds 600] [--threads 2]
     .venv/bin/python benchmarks/bench_et.py formation [--seeds 20] [--shapes T,dumbbell,starfish]
         [--jobs 2] [--et NAME=VALUE ...]
 
-With ``--jobs J`` the formation runs go to J worker processes (one per core: the wall
-times stay per run, as long as nothing else loads the machine).
+With ``--threads T`` the speed runs use ``SimParams(threads=T)`` (the threaded loop; the ET
+controller's per-robot work runs on every thread; "on T" is the share of ticks the thread
+chooser ran on T threads). With ``--jobs J`` the formation runs go to J worker processes
+(one per core: the wall times stay per run, as long as nothing else loads the machine).
 """
 
 from __future__ import annotations
@@ -29,6 +31,7 @@ import numpy as np
 from etswarm.algorithm.params import ETParams, parse_et_option
 from etswarm.algorithm.run import ETRun, RunConfig
 from etswarm.errors import EtswarmError
+from etswarm.sim.params import SimParams
 
 
 def disc_bitmap(cells: int, path: Path) -> Path:
@@ -49,16 +52,19 @@ def disc_bitmap(cells: int, path: Path) -> Path:
     return path
 
 
-def speed(seconds: float) -> None:
+def speed(seconds: float, threads: int = 1) -> None:
     tmp = Path(tempfile.mkdtemp())
-    print(f"load average {os.getloadavg()}")
+    print(f"load average {os.getloadavg()}, threads {threads}")
     header = ("shape", "robots", "sim s", "wall s", "robot-ticks/s", "x real")
     print("{:>10} {:>7} {:>7} {:>7} {:>14} {:>8}".format(*header))
     for name in ("T", "bigdisc", "disc1000"):
         shape = name
         if name == "disc1000":
             shape = str(disc_bitmap(1000, tmp / "disc1000.txt"))
-        run = ETRun(RunConfig(shape=shape, seed=0, max_time_s=seconds, layout="cluster"))
+        run = ETRun(
+            RunConfig(shape=shape, seed=0, max_time_s=seconds, layout="cluster"),
+            sim_params=SimParams(threads=threads),
+        )
         run.advance(31)  # compile / load the kernel outside the timing
         t0 = time.perf_counter()
         ticks0 = run.world.tick
@@ -66,9 +72,13 @@ def speed(seconds: float) -> None:
         wall = time.perf_counter() - t0
         ticks = run.world.tick - ticks0
         rt = run.world.n * ticks / wall
+        multi = ""
+        if threads > 1:
+            on = run.sim._chooser.ticks_on
+            multi = f"  on {threads}: {on.get(threads, 0) / max(1, sum(on.values())):.2f}"
         print(
             f"{name:>10} {run.world.n:>7} {ticks / 31:>7.0f} {wall:>7.2f} {rt:>14,.0f} "
-            f"{ticks / 31 / wall:>8.0f}"
+            f"{ticks / 31 / wall:>8.0f}{multi}"
         )
 
 
@@ -126,6 +136,7 @@ def main() -> None:
     parser.add_argument("--seeds", type=int, default=20)
     parser.add_argument("--shapes", default="T,dumbbell,starfish")
     parser.add_argument("--max-time", type=float, default=4 * 3600.0)
+    parser.add_argument("--threads", type=int, default=1, help="SimParams.threads (speed)")
     parser.add_argument("--jobs", type=int, default=1, help="worker processes (formation)")
     parser.add_argument(
         "--et", type=parse_option, action="append", default=[], metavar="NAME=VALUE",
@@ -133,7 +144,7 @@ def main() -> None:
     )
     args = parser.parse_args()
     if args.what == "speed":
-        speed(args.seconds)
+        speed(args.seconds, args.threads)
     else:
         formation(args.seeds, args.shapes.split(","), args.max_time, args.jobs, dict(args.et))
 

@@ -97,7 +97,7 @@ from etswarm.algorithm.search import search_rule
 from etswarm.algorithm.silent import encode_silent, ingest_silent, note_silent, sends_silent
 
 
-@njit
+@njit(inline="always")
 def table_slot(i, sender, nb):  # type: ignore[no-untyped-def]
     """Index of ``sender``'s row in robot i's neighbour table; a new robot takes a free
     row, else the one heard longest ago (returned negated minus one: -(row) - 1)."""
@@ -138,7 +138,7 @@ def near_epoch(own, wrapped, modulus):  # type: ignore[no-untyped-def]
     return own + delta
 
 
-@njit
+@njit(inline="always")
 def ingest(i, k, tick, ri, in_type, in_data, in_dist, nb, nb_dist):  # type: ignore[no-untyped-def]
     """Store message k of robot i's inbox in its neighbour table (layouts in ``messages``).
 
@@ -201,7 +201,7 @@ def ingest(i, k, tick, ri, in_type, in_data, in_dist, nb, nb_dist):  # type: ign
     return kind
 
 
-@njit
+@njit(inline="always")
 def encode(i, tick, ri, out_on, out_type, out_data):  # type: ignore[no-untyped-def]
     """Write robot i's next broadcast (layouts in ``messages``): its election message while
     electing (every other period its status instead while census walking, see
@@ -256,7 +256,9 @@ def encode(i, tick, ri, out_on, out_type, out_data):  # type: ignore[no-untyped-
 
 
 @njit
-def et_step(  # type: ignore[no-untyped-def]
+def et_part(  # type: ignore[no-untyped-def]
+    lo,
+    hi,
     tick,
     alive,
     in_count,
@@ -269,13 +271,25 @@ def et_step(  # type: ignore[no-untyped-def]
     out_type,
     out_data,
     mem,
-    rng,
 ):
-    """One control tick for every robot (simulator fast-path contract)."""
+    """One control tick for robots ``lo .. hi - 1`` (the controller protocol's ``part_step``).
+
+    A robot's work reads and writes only its own rows (``ri``, ``nb``, ``nb_dist``,
+    ``walk_seen``, ``held``, its motor, LED and outgoing message) and reads the shared
+    genes, ``slot_info`` and constants, which change only between kernel calls (the host
+    adds targets). The one shared write is the stop flag, set to 1 by a robot that needs
+    the host (a Leader's request): parts on different threads may set it at the same time,
+    and only ever to the same value, read after the threads meet. So parts may run at once
+    on disjoint ranges, in any order, and give what one pass over all robots gives.
+    """
     stop, ri, nb, nb_dist, gene_flag, gene_nn, slot_info, ci, cf, walk_seen, held = mem
-    n = ri.shape[0]
     every = ci[C_EVAL_EVERY]
-    for i in range(n):
+    phase = (tick + lo) % every  # (tick + i) % every, kept without a division per robot
+    for i in range(lo, hi):
+        due = phase == 0
+        phase += 1
+        if phase == every:
+            phase = 0
         if not alive[i]:
             continue
         new_msgs = False
@@ -300,7 +314,6 @@ def et_step(  # type: ignore[no-untyped-def]
             catch_up(i, tick, ri, nb, gene_flag, gene_nn, slot_info, ci)
         state = ri[i, R_STATE]
         slot = ri[i, R_TSLOT]
-        due = (tick + i) % every == 0
         if ri[i, R_PHASE] == PHASE_ELECTING and walking(ri[i, R_WALK]):
             walk_rule(i, tick, ri, nb, nb_dist, motor, walk_seen, gene_flag[slot], ci, cf, stop)
             led[i] = ri[i, R_STATE]
@@ -332,3 +345,48 @@ def et_step(  # type: ignore[no-untyped-def]
             motor[i] = STOP
         led[i] = ri[i, R_STATE]
         encode(i, tick, ri, out_on, out_type, out_data)
+
+
+@njit
+def et_rest(  # type: ignore[no-untyped-def]
+    tick,
+    alive,
+    in_count,
+    in_type,
+    in_data,
+    in_dist,
+    motor,
+    led,
+    out_on,
+    out_type,
+    out_data,
+    mem,
+    rng,
+):
+    """The controller protocol's ``rest_step``: nothing is left after :func:`et_part` (the
+    ET controller draws no random numbers and robots share no writes but the stop flag)."""
+    return
+
+
+@njit
+def et_step(  # type: ignore[no-untyped-def]
+    tick,
+    alive,
+    in_count,
+    in_type,
+    in_data,
+    in_dist,
+    motor,
+    led,
+    out_on,
+    out_type,
+    out_data,
+    mem,
+    rng,
+):
+    """One control tick for every robot (simulator fast-path contract): :func:`et_part`
+    over all robots, then :func:`et_rest`."""
+    et_part(0, alive.shape[0], tick, alive, in_count, in_type, in_data, in_dist, motor, led,
+            out_on, out_type, out_data, mem)
+    et_rest(tick, alive, in_count, in_type, in_data, in_dist, motor, led, out_on, out_type,
+            out_data, mem, rng)

@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from etswarm.algorithm.controller import et_step
+from etswarm.algorithm.controller import et_part, et_rest, et_step
 from etswarm.algorithm.layout import Layout
 from etswarm.algorithm.memory import (
     NB_ID,
@@ -43,7 +43,8 @@ INITIAL_SLOTS = 8
 
 
 class ETController:
-    """The ET controller in the simulator's fast-path form: ``step`` and ``mem``.
+    """The ET controller in the simulator's fast-path form: ``step`` (also split into
+    ``part_step`` and ``rest_step``) and ``mem``.
 
     Holds every robot's private memory and the gene grids of the targets (slot 0: the
     original shape; later slots: scaled shapes asked for by Leaders). The grids span the
@@ -52,6 +53,11 @@ class ETController:
     """
 
     step = staticmethod(et_step)
+    #: The step split for the simulator's threaded loop (``SimParams.threads > 1``): the
+    #: per-robot work on every thread (:func:`~etswarm.algorithm.controller.et_part`), and
+    #: a rest on one thread that has nothing left to do.
+    part_step = staticmethod(et_part)
+    rest_step = staticmethod(et_rest)
 
     def __init__(self, n_robots: int, target: np.ndarray, et: ETParams, ticks_per_s: int):
         self.ri, self.nb, self.nb_dist = allocate(n_robots)

@@ -73,21 +73,28 @@ from etswarm.algorithm.layout import LAYOUTS
 @click.option("--snapshots", is_flag=True,
               help="Save PNGs at the start and at each event (into --out or ./snapshots).")
 @click.option("--json", "as_json", is_flag=True, help="Print only the JSON summary.")
+@click.option("--threads", type=int, default=1, show_default=True,
+              help="Simulator threads (SimParams.threads): the phases and the robots' "
+                   "control run on this many threads; results do not depend on the count "
+                   "above 1, but differ from --threads 1's (other noise draws).")
 def run(shape: str, robots: int | None, seed: int, loss: float, noise: float, max_time: float,
         layout: str, release_interval: float | None, census: str, orbit: str, creep: bool,
         second_ring: bool, hole_memory: bool, pocket: bool, release_order: str,
         silent_sites: bool, queue_stride: bool, et_options: tuple[str, ...], fit: bool,
         damage: tuple[str, ...],
         out: Path | None, video: Path | None, fps: float, speedup: float, snapshots: bool,
-        as_json: bool) -> None:
+        as_json: bool, threads: int) -> None:
     """Grow SHAPE (a library name or a bitmap file) with the ET algorithm."""
     from etswarm.algorithm.params import ETParams, parse_et_option
     from etswarm.algorithm.run import ETRun, RunConfig
     from etswarm.cli.run_outputs import describe, drive, write_summary
     from etswarm.errors import EtswarmError
+    from etswarm.sim.params import SimParams
 
     if fps <= 0 or speedup <= 0:
         raise EtswarmError("--fps and --speedup must be > 0")
+    if not 1 <= threads <= 256:
+        raise EtswarmError(f"--threads must be in [1, 256], got {threads}")
     if video is not None and video.suffix.lower() not in (".mp4", ".gif"):
         raise EtswarmError(f"--video {video}: the file must end in .mp4 or .gif")
     et = ETParams(orbit=orbit, creep="on" if creep else "off",
@@ -103,7 +110,7 @@ def run(shape: str, robots: int | None, seed: int, loss: float, noise: float, ma
     config = RunConfig(shape=shape, robots=robots, seed=seed, loss=loss, noise_mm=noise,
                        max_time_s=max_time, layout=layout, fit=fit, damage=damage, et=et,
                        census=census)
-    et_run = ETRun(config)
+    et_run = ETRun(config, sim_params=SimParams(threads=threads))
     for note in et_run.notes:
         click.echo(f"etswarm: {note}", err=True)
     shots = None
