@@ -424,6 +424,8 @@ class ETRun:
             "noise_mm": self.config.noise_mm,
             "layout": self.config.layout,
             "census": self.config.census,
+            # threads = 1 and threads > 1 draw the motion and radio noise differently
+            "threads": int(self.sim_params.threads),
             "damage": list(self.config.damage),
             "formed": self.formed_at_s is not None,
             "formation_time_s": self.formed_at_s,
