@@ -550,6 +550,7 @@ def search_rule(  # type: ignore[no-untyped-def]
     lower_slot = -1
     beacon_est = FAR
     beacon_slot = -1
+    look_for_beacon = ci[C_LOST_BEACON] == 1
     for m in range(slots):
         if nb[i, m, NB_ID] < 0 or tick - nb[i, m, NB_LAST] > steer_fresh:
             continue
@@ -560,7 +561,7 @@ def search_rule(  # type: ignore[no-untyped-def]
             if tick - nb[i, m, NB_LAST] > SEARCHER_FRESH_TICKS:
                 continue  # a moving robot's old reading says nothing about now
             nearest_searcher = min(nearest_searcher, est)
-            if nb[i, m, NB_ANCHORED] == 1 and est < beacon_est:
+            if look_for_beacon and nb[i, m, NB_ANCHORED] == 1 and est < beacon_est:
                 beacon_est = est
                 beacon_slot = m
             if nb[i, m, NB_ID] < i and est < nearest_lower_searcher:
@@ -603,7 +604,7 @@ def search_rule(  # type: ignore[no-untyped-def]
         lost = True
         nearest = FAR
         obstacle = nearest_searcher
-        if beacon_slot >= 0 and ci[C_LOST_BEACON] == 1:
+        if beacon_slot >= 0:
             beacon = True
             reading = nb_dist[i, beacon_slot]
 
