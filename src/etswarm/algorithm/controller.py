@@ -48,6 +48,7 @@ from etswarm.algorithm.memory import (
     PHASE_NORMAL,
     R_ADOPTED_AT,
     R_EPOCH,
+    R_HOLD_UNTIL,
     R_HOP,
     R_LEADER,
     R_LOST_SINCE,
@@ -63,23 +64,28 @@ from etswarm.algorithm.memory import (
     R_SHAPE_HOPS,
     R_STATE,
     R_SUBCOUNT,
+    R_SURPLUS_AT,
     R_TAG_X,
     R_TAG_Y,
     R_TS,
     R_TSLOT,
     R_WALK,
     R_WALK_SEEN,
+    R_YIELD_SINCE,
     SLOT_LIMIT,
     SLOT_WX,
     SLOT_WY,
 )
 from etswarm.algorithm.messages import (
+    ANCHORED_BIT,
     EPOCH_SHIFT,
+    HOLD_UNIT_TICKS,
     KIND_MASK,
     MSG_ELECT,
     MSG_SILENT,
     MSG_STATUS,
     MSG_TARGET,
+    YIELDING_BIT,
 )
 from etswarm.algorithm.params import (
     C_EVAL_EVERY,
@@ -250,7 +256,14 @@ def encode(i, tick, ri, out_on, out_type, out_data):  # type: ignore[no-untyped-
         out_data[i, 3] = ri[i, R_QMIN] & 0xFF
         out_data[i, 4] = (ri[i, R_QMIN] >> 8) & 0xFF
         out_data[i, 5] = min(ri[i, R_SHAPE_HOPS], 255)
-        out_data[i, 6] = 1 if state == SEARCH and ri[i, R_LOST_SINCE] == 0 else 0
+        if state == SEARCH:
+            anchored = ANCHORED_BIT if ri[i, R_LOST_SINCE] == 0 else 0
+            surplus = ri[i, R_SURPLUS_AT] > 0 and tick + 1 >= ri[i, R_SURPLUS_AT]
+            jammed = ri[i, R_YIELD_SINCE] >= 0 or surplus
+            out_data[i, 6] = anchored | (YIELDING_BIT if jammed else 0)
+        else:
+            left = (ri[i, R_HOLD_UNTIL] - tick + HOLD_UNIT_TICKS - 1) // HOLD_UNIT_TICKS
+            out_data[i, 6] = min(max(left, 0), 255)
         out_data[i, 7] = ri[i, R_RELEASED] & 0xFF
         out_data[i, 8] = (ri[i, R_RELEASED] >> 8) & 0xFF
 

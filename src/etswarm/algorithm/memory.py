@@ -117,7 +117,10 @@ R_REF_MOVED = R_FROM_ID + 1  # ticks the searcher moved since its current refere
 R_RECENT0 = R_REF_MOVED + 1  # the first of RECENT_REFS fields: its last distinct references
 RECENT_REFS = 4
 R_NEW_REF_MOVED = R_RECENT0 + RECENT_REFS  # ticks moved since a reference not among them
-R_FIELDS = R_NEW_REF_MOVED + 1
+R_SETTLE_TRIES = R_NEW_REF_MOVED + 1  # settle periods a searcher has stood on its candidate
+R_HOLD_UNTIL = R_SETTLE_TRIES + 1  # a Queued robot releases no robot before this tick
+R_SURPLUS_AT = R_HOLD_UNTIL + 1  # 1 + tick from which a searcher counts as jammed (0: never)
+R_FIELDS = R_SURPLUS_AT + 1
 
 PHASE_NORMAL = 0
 PHASE_ELECTING = 1
@@ -143,7 +146,7 @@ NB_ESUB = 13  # election: its subtree count
 NB_ELAST = 14  # tick of its last election message
 NB_EPOCH = 15  # the target epoch the robot works for (from its status message's type)
 NB_HOPS = 16  # a Queued robot's hops to the target's placed robots (``release``)
-NB_ANCHORED = 17  # 1: a searching robot that hears a stationary robot (a lost one's beacon)
+NB_ANCHORED = 17  # byte 6 of a Queued or searching robot's status (see ``messages``)
 NB_FIELDS = 18
 
 SLOT_N = 0  # cells of the target

@@ -14,8 +14,12 @@ byte   placed robot (Inactive ..   Queued / Search robot
 5-6    timestep TS (uint16)        5: hops to the robots placed on the
                                    target (after a regeneration, see
                                    ``release``; 255 = no way known); 6:
-                                   a searcher's 1 when it hears a
-                                   stationary robot (else 0)
+                                   a searcher's bits: ANCHORED_BIT when
+                                   it hears a stationary robot,
+                                   YIELDING_BIT while it yields to
+                                   another searcher; a Queued robot's
+                                   release hold left (units of
+                                   HOLD_UNIT_TICKS, see ``release``)
 7      neighbour-site bits (bit k  robots released so far, low byte
        = a robot holds the site in
        lattice direction k)
@@ -53,6 +57,12 @@ KIND_MASK = 0x07
 EPOCH_SHIFT = 3
 
 PAYLOAD_BYTES = 9
+
+#: Byte 6 of a searcher's status: it hears a stationary robot; it yields to a searcher.
+ANCHORED_BIT = 1
+YIELDING_BIT = 2
+#: Byte 6 of a Queued robot's status counts its release hold in units of this many ticks.
+HOLD_UNIT_TICKS = 32
 
 
 @njit(inline="always")

@@ -37,7 +37,10 @@ C_RELEASE_FAR = 21  # 1: a regenerated remnant releases its Queued robots farthe
 C_QUEUE_STRIDE = 22  # 1: along the repository a searcher near its aim drives straight on
 C_SILENT_SITES = 23  # 1: electing robots note and flood the sites that fell silent
 C_LOST_BEACON = 24  # 1: a lost searcher follows a searcher that hears a stationary robot
-N_CI = 25
+C_SETTLE_RETRIES = 25  # a settled searcher that cannot confirm its site stays this many times
+C_TICKS_HOLD = 26  # a Queued robot that hears a yielding searcher holds releases this long
+C_TICKS_SURPLUS = 27  # a searcher this long at the shape without a site counts as jammed
+N_CI = 28
 
 F_SPACING = 0  # lattice spacing d
 F_PAIR_TOL = 1  # two references within this of d trigger a site candidate
@@ -52,7 +55,8 @@ F_PAIR_AIM = 9  # the pair window is centred this far from d (negative: nearer)
 F_WIDEN_MAX = 10  # a searcher long at the shape widens its tolerances up to this factor
 F_AIM_RELAX = 11  # ticks at the shape over which the pair window's centre moves back to d
 F_CONSIST_WIDEN = 12  # a widened pocket candidate's consistency tolerance grows up to this
-N_CF = 13
+F_SETTLE_SCALE = 13  # a settled searcher confirms its site with windows this many times wider
+N_CF = 14
 
 #: Census methods (``ETParams.census``): the paper's periphery walk, or a spanning tree.
 CENSUS_METHODS = ("tree", "walk")
@@ -62,7 +66,9 @@ ORBIT_MODES = ("bounce", "clockwise")
 
 
 #: Parameters that may be zero (all others must be positive).
-NON_NEGATIVE: frozenset[str] = frozenset({"pair_aim_relax_s"})
+NON_NEGATIVE: frozenset[str] = frozenset(
+    {"pair_aim_relax_s", "settle_retries", "release_hold_s", "hold_surplus_s"}
+)
 #: Parameters that may take any sign.
 SIGNED = frozenset({"pair_aim_mm", "follow_offset_mm"})
 
@@ -100,6 +106,14 @@ class ETParams:
     #: than a body, a searcher can only stop at the mouth, farther from the robot inside
     #: than the site is. 1 never widens it.
     consistency_widen_max: float = 1.0
+    #: A searcher that stopped on a candidate site confirms it after ``settle_s`` with the
+    #: pair and balance windows this many times wider: the capture window (d + pair_aim
+    #: +- pair_tol) is narrow so that a moving robot stops near the site, and a robot that
+    #: did stop 1-2 mm beyond its edge failed the confirmation on one noisy reading in two.
+    settle_tol_scale: float = 1.0
+    #: ... and when it still cannot confirm it, but the site is still near (the creep
+    #: window), it stands for another ``settle_s`` with fresh readings, this many times.
+    settle_retries: int = 0
     follow_offset_mm: float = 0.0
     closing_speed_mm_s: float = 5.0
     clearance_mm: float = 38.0
@@ -138,6 +152,15 @@ class ETParams:
     #: hops) from the scaled shape's robots ("far"), so the repository stays connected to
     #: the shape, or the lowest ID, as at the start ("id", the paper). See ``release``.
     release_order: str = "far"
+    #: Back-pressure: a Queued robot that hears a searcher yielding to another (traffic
+    #: is jammed) holds the release for this long and passes the hold on along the
+    #: repository (byte 6 of its status: seconds left, less one per hop), so no robot
+    #: leaves while searchers queue up at the shape. 0: no hold (releases are paced by
+    #: ``release_interval_s`` and ``release_clear_s`` alone).
+    release_hold_s: float = 0.0
+    #: ... and so does a searcher that has been at the shape this long without finding a
+    #: site (more searchers than free sites); 0: only yielding counts.
+    hold_surplus_s: float = 0.0
     #: In the first formation, along the repository (no placed robot heard yet) a searcher
     #: near its aim drives straight on instead of pivoting ("on"), or pivots to and fro as
     #: along the shape ("off", the paper's edge-following). After a regeneration the
@@ -172,7 +195,7 @@ class ETParams:
                     raise EtswarmError(f"orbit must be one of {ORBIT_MODES}, got {value!r}")
             elif f.name in SIGNED:
                 continue
-            elif f.name in ("widen_max", "consistency_widen_max"):
+            elif f.name in ("widen_max", "consistency_widen_max", "settle_tol_scale"):
                 if not value >= 1:
                     raise EtswarmError(f"ET parameter {f.name} must be >= 1, got {value}")
             elif f.name in NON_NEGATIVE:
@@ -226,6 +249,9 @@ class ETParams:
         ci[C_SILENT_SITES] = 1 if self.silent_sites == "on" else 0
         ci[C_LOST_BEACON] = 1 if self.lost_beacon == "on" else 0
         ci[C_RELEASE_FAR] = 1 if self.release_order == "far" else 0
+        ci[C_SETTLE_RETRIES] = self.settle_retries
+        ci[C_TICKS_HOLD] = round(self.release_hold_s * ticks_per_s)
+        ci[C_TICKS_SURPLUS] = round(self.hold_surplus_s * ticks_per_s)
         cf = np.zeros(N_CF, dtype=np.float64)
         cf[F_SPACING] = self.spacing_mm
         cf[F_PAIR_TOL] = self.pair_tol_mm
@@ -234,6 +260,7 @@ class ETParams:
         cf[F_AIM_RELAX] = self.pair_aim_relax_s * ticks_per_s
         cf[F_CONSIST_TOL] = self.consistency_tol_mm
         cf[F_CONSIST_WIDEN] = self.consistency_widen_max
+        cf[F_SETTLE_SCALE] = self.settle_tol_scale
         cf[F_YIELD_DIST] = self.yield_distance_mm
         cf[F_FOLLOW_OFFSET] = self.follow_offset_mm
         cf[F_CLOSING] = self.closing_speed_mm_s / ticks_per_s

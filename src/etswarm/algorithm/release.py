@@ -25,6 +25,7 @@ from etswarm.algorithm.kernel_util import (
     is_placed,
 )
 from etswarm.algorithm.memory import (
+    NB_ANCHORED,
     NB_EPOCH,
     NB_HOPS,
     NB_ID,
@@ -34,14 +35,17 @@ from etswarm.algorithm.memory import (
     R_EPOCH,
     R_FLOOR,
     R_FLOOR_SINCE,
+    R_HOLD_UNTIL,
     R_QMIN,
     R_QMIN_SINCE,
     R_RELEASED,
     R_SHAPE_HOPS,
 )
+from etswarm.algorithm.messages import HOLD_UNIT_TICKS, YIELDING_BIT
 from etswarm.algorithm.params import (
     C_RELEASE_FAR,
     C_TICKS_CLEAR,
+    C_TICKS_HOLD,
     C_TICKS_NB_FRESH,
     C_TICKS_QUIET,
     C_TICKS_RELEASE,
@@ -96,6 +100,8 @@ def queued_rule(i, tick, ri, nb, ci, limit):  # type: ignore[no-untyped-def]
     if far_first:
         ri[i, R_SHAPE_HOPS] = shape_hops(i, tick, ri, nb, fresh)
     lowest_hops = ri[i, R_SHAPE_HOPS]
+    hold_ticks = ci[C_TICKS_HOLD]
+    hold = ri[i, R_HOLD_UNTIL]
     for m in range(nb.shape[1]):
         sid = nb[i, m, NB_ID]
         if sid < 0 or nb[i, m, NB_EPOCH] != epoch:
@@ -106,6 +112,14 @@ def queued_rule(i, tick, ri, nb, ci, limit):  # type: ignore[no-untyped-def]
         if tick - nb[i, m, NB_LAST] > fresh or st > SEARCH:
             continue
         released = max(released, nb[i, m, NB_RELEASED])
+        if hold_ticks > 0:
+            # Back-pressure (``release_hold_s``): a yielding searcher starts a hold, a
+            # Queued robot passes its own on, one unit shorter.
+            byte6 = nb[i, m, NB_ANCHORED]
+            if st == SEARCH and byte6 & YIELDING_BIT:
+                hold = max(hold, nb[i, m, NB_LAST] + hold_ticks)
+            elif st == QUEUED and byte6 > 1:
+                hold = max(hold, nb[i, m, NB_LAST] + (byte6 - 1) * HOLD_UNIT_TICKS)
         if st != QUEUED:
             continue
         if far_first:
@@ -115,6 +129,7 @@ def queued_rule(i, tick, ri, nb, ci, limit):  # type: ignore[no-untyped-def]
                 lowest_hops = hops
         elif sid < lowest:
             lowest = sid
+    ri[i, R_HOLD_UNTIL] = hold
     if released != ri[i, R_RELEASED]:
         ri[i, R_RELEASED] = released
         ri[i, R_FLOOR_SINCE] = tick
@@ -127,6 +142,7 @@ def queued_rule(i, tick, ri, nb, ci, limit):  # type: ignore[no-untyped-def]
         and tick - last_searcher >= ci[C_TICKS_CLEAR]
         and tick - ri[i, R_QMIN_SINCE] >= ci[C_TICKS_QUIET]
         and tick - ri[i, R_FLOOR_SINCE] >= ci[C_TICKS_RELEASE]
+        and tick >= hold
     ):
         begin_search(i, tick, ri)
         ri[i, R_FLOOR] = i

@@ -49,9 +49,11 @@ from etswarm.algorithm.memory import (
     R_REF_ID,
     R_REF_MOVED,
     R_REF_TREND,
+    R_SETTLE_TRIES,
     R_SHAPE_SINCE,
     R_SUB,
     R_SUB_SINCE,
+    R_SURPLUS_AT,
     R_TAG_X,
     R_TAG_Y,
     R_TOWARD_SINCE,
@@ -63,6 +65,7 @@ from etswarm.algorithm.memory import (
     SUB_FOLLOW,
     SUB_SETTLE,
 )
+from etswarm.algorithm.messages import ANCHORED_BIT
 from etswarm.algorithm.params import (
     C_CREEP,
     C_HOLE_MEMORY,
@@ -71,10 +74,12 @@ from etswarm.algorithm.params import (
     C_POCKET,
     C_QUEUE_STRIDE,
     C_SECOND_RING,
+    C_SETTLE_RETRIES,
     C_TICKS_COOLDOWN,
     C_TICKS_MOVE_FRESH,
     C_TICKS_NB_FRESH,
     C_TICKS_SETTLE,
+    C_TICKS_SURPLUS,
     C_TICKS_YIELD_MAX,
     F_AIM_RELAX,
     F_BALANCE_TOL,
@@ -85,6 +90,7 @@ from etswarm.algorithm.params import (
     F_FOLLOW_OFFSET,
     F_PAIR_AIM,
     F_PAIR_TOL,
+    F_SETTLE_SCALE,
     F_SPACING,
     F_WIDEN_MAX,
     F_YIELD_DIST,
@@ -150,6 +156,7 @@ def begin_search(i, tick, ri):  # type: ignore[no-untyped-def]
     ri[i, R_ORBIT] = 0
     ri[i, R_ON_SHAPE] = 0
     ri[i, R_SHAPE_SINCE] = 0
+    ri[i, R_SURPLUS_AT] = 0
     ri[i, R_CREEP_UNTIL] = 0
     ri[i, R_LOST_SINCE] = 0
     ri[i, R_TOWARD_SINCE] = tick
@@ -371,7 +378,7 @@ def window_centre(cf, at_shape):  # type: ignore[no-untyped-def]
 @njit
 def find_site(  # type: ignore[no-untyped-def]
     i, tick, since, strict, ref_id, from_id, orbit, nb, nb_dist, gene_flag, ci, cf, tol_scale,
-    wide_min, held_i, ox, oy, pair_aim,
+    wide_min, held_i, ox, oy, pair_aim, plain_scale,
 ):
     """Localise robot i from its placed neighbours (paper Sec. 4.1).
 
@@ -396,12 +403,14 @@ def find_site(  # type: ignore[no-untyped-def]
     may also disagree with a heard robot by up to the consistency tolerance times
     ``min(tol_scale, consistency_widen_max)``, but never hear a robot of a neighbouring
     site farther than d + ``ADJACENT_SLACK_MM``. ``pair_aim`` (mm) is
-    the window's centre (``window_centre``).
+    the window's centre (``window_centre``); ``plain_scale`` (>= 1) widens the plain window
+    (a settled robot's confirmation, ``settle_tol_scale``).
 
     Returns ``(found, x, y, min_active_ts)``; the best-fitting candidate wins.
     """
     d = cf[F_SPACING]
-    pair_tol = cf[F_PAIR_TOL] * tol_scale
+    scale = max(tol_scale, plain_scale)
+    pair_tol = cf[F_PAIR_TOL] * scale
     consist_tol = cf[F_CONSIST_TOL]
     # a pocket candidate may disagree more (checked against the plain one below)
     consist_wide = consist_tol * min(tol_scale, cf[F_CONSIST_WIDEN])
@@ -425,7 +434,7 @@ def find_site(  # type: ignore[no-untyped-def]
                 continue
             if nb[i, b, NB_LAST] < since or abs(nb_dist[i, b] - pair_aim) > pair_tol:
                 continue
-            if not in_window(nb_dist[i, a], nb_dist[i, b], pair_aim, cf, tol_scale):
+            if not in_window(nb_dist[i, a], nb_dist[i, b], pair_aim, cf, scale):
                 # Settle midway between the two references, not where the window opens.
                 continue
             dx = nb[i, b, NB_TX] - ax
@@ -509,9 +518,9 @@ def find_site(  # type: ignore[no-untyped-def]
                             min_ts = ts
                 if ok and strict and reported_but_unheard(i, cx, cy, since, nb):
                     ok = False
-                if ok and tol_scale > 1.0 and n_adjacent < wide_min:
+                if ok and tol_scale > plain_scale and n_adjacent < wide_min:
                     ok = worst <= consist_tol and in_window(
-                        nb_dist[i, a], nb_dist[i, b], pair_aim, cf, 1.0
+                        nb_dist[i, a], nb_dist[i, b], pair_aim, cf, plain_scale
                     )
                 if ok and ruled_out_mirror and min_ts >= 0 and err < best_err:
                     if hole_memory and shuts_in(cx, cy, held_i, ox, oy, gene_flag, ci):
@@ -561,7 +570,7 @@ def search_rule(  # type: ignore[no-untyped-def]
             if tick - nb[i, m, NB_LAST] > SEARCHER_FRESH_TICKS:
                 continue  # a moving robot's old reading says nothing about now
             nearest_searcher = min(nearest_searcher, est)
-            if look_for_beacon and nb[i, m, NB_ANCHORED] == 1 and est < beacon_est:
+            if look_for_beacon and nb[i, m, NB_ANCHORED] & ANCHORED_BIT and est < beacon_est:
                 beacon_est = est
                 beacon_slot = m
             if nb[i, m, NB_ID] < i and est < nearest_lower_searcher:
@@ -586,6 +595,8 @@ def search_rule(  # type: ignore[no-untyped-def]
         ri[i, R_ON_SHAPE] = 1
         if ri[i, R_SHAPE_SINCE] == 0:
             ri[i, R_SHAPE_SINCE] = tick + 1
+            if ci[C_TICKS_SURPLUS] > 0:
+                ri[i, R_SURPLUS_AT] = tick + 1 + ci[C_TICKS_SURPLUS]
     elif queued_slot >= 0:
         if ci[C_ORBIT_BOUNCE] == 1 and ri[i, R_ON_SHAPE] == 1:
             # Left the shape along the repository: go back round the shape the other way
@@ -635,9 +646,20 @@ def search_rule(  # type: ignore[no-untyped-def]
         wide_min = WIDE_MIN_NEIGHBOURS
         found, cx, cy, min_ts = find_site(
             i, tick, since, True, ref, came, orbit, nb, nb_dist, gene_flag, ci, cf, widen,
-            wide_min, held_i, ox, oy, pair_aim,
+            wide_min, held_i, ox, oy, pair_aim, cf[F_SETTLE_SCALE],
         )
         same = found and cx == ri[i, R_CAND_X] and cy == ri[i, R_CAND_Y]
+        if not same and ri[i, R_SETTLE_TRIES] < ci[C_SETTLE_RETRIES]:
+            # Noisy readings may have missed the window: stand on with fresh ones while
+            # the candidate is still near.
+            near, nx, ny, _ = find_site(
+                i, tick, since, False, ref, came, orbit, nb, nb_dist, gene_flag, ci, cf,
+                CREEP_TOL_SCALE, 0, held_i, ox, oy, pair_aim, 1.0,
+            )
+            if near and nx == ri[i, R_CAND_X] and ny == ri[i, R_CAND_Y]:
+                ri[i, R_SETTLE_TRIES] += 1
+                ri[i, R_SUB_SINCE] = tick
+                return
         if not same and pocket:
             found, cx, cy, min_ts = pocket_site(
                 i, tick, since, nb, nb_dist, gene_flag, ci, cf, held_i, ox, oy
@@ -688,7 +710,7 @@ def search_rule(  # type: ignore[no-untyped-def]
         wide_min = WIDE_MIN_NEIGHBOURS
         found, cx, cy, min_ts = find_site(
             i, tick, since, False, ref, came, orbit, nb, nb_dist, gene_flag, ci, cf, widen,
-            wide_min, held_i, ox, oy, pair_aim,
+            wide_min, held_i, ox, oy, pair_aim, 1.0,
         )
         if not found and pocket:
             found, cx, cy, min_ts = pocket_site(
@@ -698,6 +720,7 @@ def search_rule(  # type: ignore[no-untyped-def]
             motor[i] = STOP
             ri[i, R_SUB] = SUB_SETTLE
             ri[i, R_SUB_SINCE] = tick
+            ri[i, R_SETTLE_TRIES] = 0
             ri[i, R_CAND_X] = cx
             ri[i, R_CAND_Y] = cy
             return
@@ -705,7 +728,7 @@ def search_rule(  # type: ignore[no-untyped-def]
             recent = tick - steer_fresh
             near, _, _, _ = find_site(
                 i, tick, recent, False, ref, came, orbit, nb, nb_dist, gene_flag, ci, cf,
-                CREEP_TOL_SCALE, 0, held_i, ox, oy, pair_aim,
+                CREEP_TOL_SCALE, 0, held_i, ox, oy, pair_aim, 1.0,
             )
             if near:
                 ri[i, R_CREEP_UNTIL] = tick + CREEP_HOLD_TICKS
