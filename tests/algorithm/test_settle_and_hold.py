@@ -150,7 +150,7 @@ def test_a_searcher_says_when_it_yields() -> None:
 @pytest.mark.parametrize(
     ("name", "value"),
     [("settle_retries", -1), ("release_hold_s", -5.0), ("settle_tol_scale", 0.5),
-     ("hold_surplus_s", -1.0)],
+     ("hold_surplus_s", -1.0), ("widen_s", 0.0)],
 )
 def test_bad_values_are_rejected(name: str, value: float) -> None:
     with pytest.raises(EtswarmError, match=name):

@@ -56,7 +56,8 @@ F_WIDEN_MAX = 10  # a searcher long at the shape widens its tolerances up to thi
 F_AIM_RELAX = 11  # ticks at the shape over which the pair window's centre moves back to d
 F_CONSIST_WIDEN = 12  # a widened pocket candidate's consistency tolerance grows up to this
 F_SETTLE_SCALE = 13  # a settled searcher confirms its site with windows this many times wider
-N_CF = 14
+F_WIDEN_TICKS = 14  # ticks at the shape over which a searcher's tolerances widen to widen_max
+N_CF = 15
 
 #: Census methods (``ETParams.census``): the paper's periphery walk, or a spanning tree.
 CENSUS_METHODS = ("tree", "walk")
@@ -100,6 +101,8 @@ class ETParams:
     #: A searcher at the shape for 20 min has widened its pair and balance tolerances to
     #: this factor (at pockets of three or more placed neighbours); 1 never widens.
     widen_max: float = 3.0
+    #: ... over this long (simulated seconds at the shape), linearly.
+    widen_s: float = 1200.0
     consistency_tol_mm: float = 16.0
     #: At a pocket (see ``widen_max``) the consistency tolerance widens with the pair
     #: window, up to this factor: where the lattice has pinched a site's mouth narrower
@@ -257,6 +260,7 @@ class ETParams:
         cf[F_PAIR_TOL] = self.pair_tol_mm
         cf[F_PAIR_AIM] = self.pair_aim_mm
         cf[F_WIDEN_MAX] = self.widen_max
+        cf[F_WIDEN_TICKS] = self.widen_s * ticks_per_s
         cf[F_AIM_RELAX] = self.pair_aim_relax_s * ticks_per_s
         cf[F_CONSIST_TOL] = self.consistency_tol_mm
         cf[F_CONSIST_WIDEN] = self.consistency_widen_max

@@ -93,6 +93,7 @@ from etswarm.algorithm.params import (
     F_SETTLE_SCALE,
     F_SPACING,
     F_WIDEN_MAX,
+    F_WIDEN_TICKS,
     F_YIELD_DIST,
 )
 from etswarm.algorithm.pocket import POCKET_AFTER_TICKS, pocket_site
@@ -124,8 +125,7 @@ CREEP_TOL_SCALE = 3.0
 #: nearer than its aim is circling out of reach; it then drives on while closing in.
 CIRCLING_TICKS = 31 * 10
 #: A searcher's pair and balance tolerances grow linearly from 1x to ``ETParams.widen_max``
-#: x over its first ``WIDEN_TICKS`` at the shape (since it first heard a placed robot).
-WIDEN_TICKS = 31 * 1200
+#: x over its first ``ETParams.widen_s`` at the shape (since it first heard a placed robot),
 #: ... but only at a site with at least this many placed neighbours heard.
 WIDE_MIN_NEIGHBOURS = 3
 #: Along the repository (no placed robot heard) a searcher drives straight on while its
@@ -631,7 +631,7 @@ def search_rule(  # type: ignore[no-untyped-def]
     at_shape = 0
     if ri[i, R_SHAPE_SINCE] > 0:
         at_shape = tick - ri[i, R_SHAPE_SINCE] + 1
-        widen = 1.0 + (cf[F_WIDEN_MAX] - 1.0) * min(1.0, at_shape / WIDEN_TICKS)
+        widen = 1.0 + (cf[F_WIDEN_MAX] - 1.0) * min(1.0, at_shape / cf[F_WIDEN_TICKS])
         # Long at the shape, it may also take a site from the robots round it (``pocket``).
         pocket = ci[C_POCKET] == 1 and at_shape >= POCKET_AFTER_TICKS
     pair_aim = window_centre(cf, at_shape)
