@@ -11,7 +11,7 @@ from __future__ import annotations
 import numpy as np
 
 from etswarm.algorithm.controller import encode
-from etswarm.algorithm.kernel_util import FORWARD, RIGHT, SEARCH
+from etswarm.algorithm.kernel_util import FORWARD, RIGHT, SEARCH, STOP
 from etswarm.algorithm.memory import (
     NB_ANCHORED,
     NB_ID,
@@ -67,3 +67,29 @@ def test_a_searcher_says_whether_it_hears_a_stationary_robot() -> None:
     ri[0, R_LOST_SINCE] = 5
     encode(0, 10, ri, out_on, out_type, out_data)
     assert out_data[0, 6] == 0
+
+
+def steer_lost_beside_lower(lost_yield: str) -> int:
+    """Motor command of searcher 6, lost, hearing only searcher 2 (a lower ID) at 45 mm."""
+    ri, nb, nb_dist = allocate(7)
+    begin_search(6, TICK - LOST_FOR - 10, ri)
+    ri[6, R_LOST_SINCE] = TICK - LOST_FOR + 1
+    nb[6, 0, NB_ID] = 2
+    nb[6, 0, NB_STATE] = SEARCH
+    nb[6, 0, NB_LAST] = TICK
+    nb_dist[6, 0] = 45.0
+    gene = np.ones((3, 3), dtype=np.uint8)
+    gene_nn = np.full((3, 3), 6, dtype=np.int8)
+    ci, cf = ETParams(lost_yield=lost_yield).pack(31, gene_x0=-1, gene_y0=-1)
+    motor = np.full(7, FORWARD, dtype=np.uint8)
+    held = np.zeros((7, 1, 1), dtype=np.uint8)
+    search_rule(6, TICK, True, ri, nb, nb_dist, motor, gene, gene_nn, ci, cf, held, 0, 0)
+    return int(motor[6])
+
+
+def test_a_lost_searcher_need_not_yield() -> None:
+    # Traced on T seed 1 (settle retries and release hold on): four searchers pushed off
+    # the end of the crossbar lost the group and parked beside each other, each yielding
+    # to a lower ID, and drifted 0.5 m away as a clump for 25 min.
+    assert steer_lost_beside_lower("on") == STOP
+    assert steer_lost_beside_lower("off") == int(lost_motion(TICK, TICK - LOST_FOR))

@@ -40,7 +40,8 @@ C_LOST_BEACON = 24  # 1: a lost searcher follows a searcher that hears a station
 C_SETTLE_RETRIES = 25  # a settled searcher that cannot confirm its site stays this many times
 C_TICKS_HOLD = 26  # a Queued robot that hears a yielding searcher holds releases this long
 C_TICKS_SURPLUS = 27  # a searcher this long at the shape without a site counts as jammed
-N_CI = 28
+C_LOST_YIELD = 28  # 1: a lost searcher yields to lower-ID searchers as on the edge
+N_CI = 29
 
 F_SPACING = 0  # lattice spacing d
 F_PAIR_TOL = 1  # two references within this of d trigger a site candidate
@@ -177,6 +178,9 @@ class ETParams:
     #: ("on"), or only drives its widening spiral ("off"). Off by default: over 20 seeds of
     #: 13 shapes 209 of 260 formed with it against 214 (docs/algorithm.md, "lost").
     lost_beacon: str = "off"
+    #: A lost searcher yields to a lower-ID searcher nearby as it does on the group's edge
+    #: ("on"), or only keeps clear of it ("off").
+    lost_yield: str = "on"
 
     def __post_init__(self) -> None:
         for f in fields(self):
@@ -186,7 +190,7 @@ class ETParams:
                     raise EtswarmError(f"census must be one of {CENSUS_METHODS}, got {value!r}")
             elif f.name in (
                 "creep", "second_ring", "hole_memory", "pocket", "queue_stride", "silent_sites",
-                "lost_beacon",
+                "lost_beacon", "lost_yield",
             ):
                 if value not in ("on", "off"):
                     raise EtswarmError(f"{f.name} must be 'on' or 'off', got {value!r}")
@@ -251,6 +255,7 @@ class ETParams:
         ci[C_QUEUE_STRIDE] = 1 if self.queue_stride == "on" else 0
         ci[C_SILENT_SITES] = 1 if self.silent_sites == "on" else 0
         ci[C_LOST_BEACON] = 1 if self.lost_beacon == "on" else 0
+        ci[C_LOST_YIELD] = 1 if self.lost_yield == "on" else 0
         ci[C_RELEASE_FAR] = 1 if self.release_order == "far" else 0
         ci[C_SETTLE_RETRIES] = self.settle_retries
         ci[C_TICKS_HOLD] = round(self.release_hold_s * ticks_per_s)

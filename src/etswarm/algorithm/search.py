@@ -70,6 +70,7 @@ from etswarm.algorithm.params import (
     C_CREEP,
     C_HOLE_MEMORY,
     C_LOST_BEACON,
+    C_LOST_YIELD,
     C_ORBIT_BOUNCE,
     C_POCKET,
     C_QUEUE_STRIDE,
@@ -686,7 +687,9 @@ def search_rule(  # type: ignore[no-untyped-def]
     if lower_slot >= 0:
         track_trend(i, ri, nb, nb_dist, lower_slot, R_YLD_ID)
     chased = motor[i] == STOP and ri[i, R_YLD_TREND] < 0
-    if nearest_lower_searcher < cf[F_YIELD_DIST] and not chased:
+    # A lost searcher is on no edge: yielding there only parks it beside other lost ones.
+    may_yield = not lost or ci[C_LOST_YIELD] == 1
+    if nearest_lower_searcher < cf[F_YIELD_DIST] and not chased and may_yield:
         if ri[i, R_YIELD_SINCE] < 0:
             ri[i, R_YIELD_SINCE] = tick
         if tick - ri[i, R_YIELD_SINCE] < ci[C_TICKS_YIELD_MAX]:
