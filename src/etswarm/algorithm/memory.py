@@ -5,7 +5,7 @@ A robot's memory is one row of ``ri`` (int64 fields) plus its neighbour table, o
 memory only; the controller never reads another robot's row.
 
 ``mem`` passed to the simulator is the tuple
-``(stop, ri, nb, nb_dist, gene_flag, gene_nn, slot_info, ci, cf, walk_seen, held)``:
+``(stop, ri, nb, nb_dist, gene_flag, gene_nn, slot_info, ci, cf, walk_seen, held, idle)``:
 
 - ``stop``       (1,) int64: nonzero asks the simulator to end the chunk (host work needed)
 - ``ri``         (N, R_FIELDS) int64: the fields ``R_*`` below
@@ -22,6 +22,9 @@ memory only; the controller never reads another robot's row.
   remnant as Leader (census ``walk``; grid as the genes'); (N, 1, 1) when census ``tree``
 - ``held``       (N, WX, WY) uint8: per searching robot, the sites it has heard held (see
   ``site_memory``; a window of the original shape's extent plus one site on every side)
+- ``idle``       (N,) int64: per robot, the tick until which it sleeps unless it hears
+  something new (0: awake; Queued robots whose next evaluations could change nothing,
+  see ``controller.et_part``); the host zeroes a robot's entry when it edits its memory
 """
 
 from __future__ import annotations
