@@ -122,8 +122,18 @@ def hashes(
             )
             run.advance(round(seconds * 31))
             states = np.bincount(run.controller.states, minlength=8).tolist()
+            ctl = run.controller
+            world = run.world
+            # the whole memory and radio state, and what the host noted
+            more = hashlib.sha256()
+            for array in (ctl.nb, ctl.nb_dist, ctl.walk_seen, ctl.held, world.out_on,
+                          world.out_type, world.out_data, world.motor, world.led):
+                more.update(np.ascontiguousarray(array).tobytes())
+            more.update(repr((run.events, run.formed_at_s, run.settled_at_s,
+                              sorted(run.reformed_at.items()))).encode())
             print(f"{name:>10} seed {seed} threads {threads} layout {layout} {seconds:.0f} s: "
-                  f"{run_hash(run)}  states {states}  events {len(run.events)}", flush=True)
+                  f"{run_hash(run)}  states {states}  events {len(run.events)}  "
+                  f"memory+events {more.hexdigest()[:16]}", flush=True)
 
 
 def formation_run(
