@@ -1,5 +1,6 @@
 """Sleeping robots (``ETController.idle``): a Queued robot whose next evaluations could
-change nothing sleeps until they could, and skips its rule meanwhile. That must give the
+change nothing sleeps until they could, and skips its rule meanwhile; a placed robot
+sleeps till its next due tick (it is not visited while it hears nothing). That must give the
 very bytes of a run where every robot evaluates at every due tick: here the reference run
 wakes every robot before every tick (``idle`` zeroed), and the two runs' whole memory
 and radio output are compared tick for tick. And the host's cheap measure check
@@ -36,12 +37,15 @@ def test_sleeping_gives_the_bytes_of_evaluating_every_due_tick(
     sleeping = ETRun(config)
     awake = ETRun(config)
     slept = 0
+    placed_slept = 0
     for _ in range(ticks):
         awake.controller.idle[:] = 0  # wakes every robot: it evaluates at every due tick
         awake.advance(1)
         sleeping.advance(1)
         tick = sleeping.world.tick
-        slept += int(np.count_nonzero(sleeping.controller.idle > tick))
+        asleep = sleeping.controller.idle > tick
+        slept += int(np.count_nonzero(asleep))
+        placed_slept += int(np.count_nonzero(asleep & (sleeping.controller.states >= 2)))
         if tick % 31 == 0:
             for a, b in zip(snapshot(sleeping), snapshot(awake), strict=True):
                 np.testing.assert_array_equal(a, b)
@@ -50,6 +54,7 @@ def test_sleeping_gives_the_bytes_of_evaluating_every_due_tick(
     # the robots did sleep (a good share of the Queued robot-ticks), and things happened
     queued = np.count_nonzero(sleeping.controller.states == State.QUEUED)
     assert slept > 0.2 * ticks * max(queued, 1)
+    assert placed_slept > 0  # placed robots sleep till their next due tick
     assert np.count_nonzero(sleeping.controller.states != State.QUEUED) >= 3
 
 

@@ -222,7 +222,10 @@ def idle_wake(i, k, tick, wake, ri, in_data, ci):  # type: ignore[no-untyped-def
     heard; hearing the lowest again keeps that entry fresh for longer, and a searcher
     heard by the robot that is lowest itself restarts its wait for a clear repository.
     (The robot's ``R_QMIN``, ``R_RELEASED`` and epoch do not change while it sleeps.)
+    A placed robot sleeps only till its next due tick, when it evaluates whatever it heard.
     """
+    if ri[i, R_STATE] != QUEUED:
+        return wake
     state = int(in_data[i, k, 2]) & 0x0F
     if state > SEARCH:
         return wake
@@ -401,6 +404,15 @@ def et_part(  # type: ignore[no-untyped-def]
         elif INACTIVE <= state <= STABLE:
             motor[i] = STOP
             placed_rule(i, tick, ri, nb, nb_dist, ci, cf)
+            if (
+                ri[i, R_PHASE] == PHASE_NORMAL
+                and INACTIVE <= ri[i, R_STATE] <= STABLE
+                and ri[i, R_PEND_EPOCH] <= ri[i, R_EPOCH]
+            ):
+                # Until its next due tick it does nothing unless it hears something.
+                idle[i] = tick + every
+            else:
+                idle[i] = 0
         else:
             motor[i] = STOP
         if ri[i, R_STATE] != SEARCH:
