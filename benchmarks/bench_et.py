@@ -8,6 +8,12 @@ and the number of runs that ended with a tag held by two robots.
     .venv/bin/python benchmarks/bench_et.py speed [--seconds 600] [--threads 2]
     .venv/bin/python benchmarks/bench_et.py formation [--seeds 20] [--shapes T,dumbbell,starfish]
         [--jobs 2] [--et NAME=VALUE ...]
+    .venv/bin/python benchmarks/bench_et.py hash [--seconds 600] [--threads 2]
+        [--shapes T,disc1000] [--hash-seeds 0,1] [--layout queue] [--damage SPEC]
+
+``speed --shapes T,disc1000`` times only those shapes (default T, bigdisc, disc1000).
+Hash: a SHA-256 digest of the final ``pos``, ``heading`` and ``ri`` (the robots' memory)
+of each run, to check that a change of the code keeps the results byte-identical.
 
 With ``--threads T`` the speed runs use ``SimParams(threads=T)`` (the threaded loop; the ET
 controller's per-robot work runs on every thread; "on T" is the share of ticks the thread
@@ -18,6 +24,7 @@ chooser ran on T threads). With ``--jobs J`` the formation runs go to J worker p
 from __future__ import annotations
 
 import argparse
+import hashlib
 import os
 import statistics
 import tempfile
@@ -52,24 +59,34 @@ def disc_bitmap(cells: int, path: Path) -> Path:
     return path
 
 
-def speed(seconds: float, threads: int = 1) -> None:
+SPEED_SHAPES = ("T", "bigdisc", "disc1000")
+
+
+def shape_path(name: str, tmp: Path) -> str:
+    """The shape argument for ``name`` ("disc1000": a written disc bitmap of 1000 cells)."""
+    if name == "disc1000":
+        return str(disc_bitmap(1000, tmp / "disc1000.txt"))
+    return name
+
+
+def speed(seconds: float, threads: int = 1, shapes: tuple[str, ...] = SPEED_SHAPES) -> None:
     tmp = Path(tempfile.mkdtemp())
     print(f"load average {os.getloadavg()}, threads {threads}")
-    header = ("shape", "robots", "sim s", "wall s", "robot-ticks/s", "x real")
-    print("{:>10} {:>7} {:>7} {:>7} {:>14} {:>8}".format(*header))
-    for name in ("T", "bigdisc", "disc1000"):
-        shape = name
-        if name == "disc1000":
-            shape = str(disc_bitmap(1000, tmp / "disc1000.txt"))
+    header = ("shape", "robots", "sim s", "wall s", "cpu s", "robot-ticks/s", "x real")
+    print("{:>10} {:>7} {:>7} {:>7} {:>7} {:>14} {:>8}".format(*header))
+    for name in shapes:
+        shape = shape_path(name, tmp)
         run = ETRun(
             RunConfig(shape=shape, seed=0, max_time_s=seconds, layout="cluster"),
             sim_params=SimParams(threads=threads),
         )
         run.advance(31)  # compile / load the kernel outside the timing
         t0 = time.perf_counter()
+        c0 = time.process_time()
         ticks0 = run.world.tick
         run.advance(round(seconds * 31) - ticks0)
         wall = time.perf_counter() - t0
+        cpu = time.process_time() - c0
         ticks = run.world.tick - ticks0
         rt = run.world.n * ticks / wall
         multi = ""
@@ -77,9 +94,46 @@ def speed(seconds: float, threads: int = 1) -> None:
             on = run.sim._chooser.ticks_on
             multi = f"  on {threads}: {on.get(threads, 0) / max(1, sum(on.values())):.2f}"
         print(
-            f"{name:>10} {run.world.n:>7} {ticks / 31:>7.0f} {wall:>7.2f} {rt:>14,.0f} "
+            f"{name:>10} {run.world.n:>7} {ticks / 31:>7.0f} {wall:>7.2f} {cpu:>7.2f} {rt:>14,.0f} "
             f"{ticks / 31 / wall:>8.0f}{multi}"
         )
+
+
+def run_hash(run: ETRun) -> str:
+    """SHA-256 (first 16 hex digits) of the run's final positions, headings and memory."""
+    digest = hashlib.sha256()
+    for array in (run.world.pos, run.world.heading, run.controller.ri):
+        digest.update(np.ascontiguousarray(array).tobytes())
+    return digest.hexdigest()[:16]
+
+
+def hashes(
+    seconds: float, threads: int, shapes: list[str], seeds: list[int], layout: str,
+    damage: tuple[str, ...] = (),
+) -> None:
+    """Print the final-state hash of each (shape, seed) run of ``seconds`` simulated s."""
+    tmp = Path(tempfile.mkdtemp())
+    for name in shapes:
+        for seed in seeds:
+            run = ETRun(
+                RunConfig(shape=shape_path(name, tmp), seed=seed, max_time_s=seconds,
+                          layout=layout, damage=damage),
+                sim_params=SimParams(threads=threads),
+            )
+            run.advance(round(seconds * 31))
+            states = np.bincount(run.controller.states, minlength=8).tolist()
+            ctl = run.controller
+            world = run.world
+            # the whole memory and radio state, and what the host noted
+            more = hashlib.sha256()
+            for array in (ctl.nb, ctl.nb_dist, ctl.walk_seen, ctl.held, world.out_on,
+                          world.out_type, world.out_data, world.motor, world.led):
+                more.update(np.ascontiguousarray(array).tobytes())
+            more.update(repr((run.events, run.formed_at_s, run.settled_at_s,
+                              sorted(run.reformed_at.items()))).encode())
+            print(f"{name:>10} seed {seed} threads {threads} layout {layout} {seconds:.0f} s: "
+                  f"{run_hash(run)}  states {states}  events {len(run.events)}  "
+                  f"memory+events {more.hexdigest()[:16]}", flush=True)
 
 
 def formation_run(
@@ -131,11 +185,17 @@ def formation(
 
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__)
-    parser.add_argument("what", choices=["speed", "formation"])
+    parser.add_argument("what", choices=["speed", "formation", "hash"])
     parser.add_argument("--seconds", type=float, default=600.0)
     parser.add_argument("--seeds", type=int, default=20)
-    parser.add_argument("--shapes", default="T,dumbbell,starfish")
+    parser.add_argument(
+        "--shapes", default=None,
+        help="formation: default T,dumbbell,starfish; speed: T,bigdisc,disc1000; hash: T,disc1000",
+    )
+    parser.add_argument("--layout", default="cluster", help="layout of the hash runs")
+    parser.add_argument("--damage", action="append", default=[], help="hash: damage spec")
     parser.add_argument("--max-time", type=float, default=4 * 3600.0)
+    parser.add_argument("--hash-seeds", default=None, help="hash: seeds, default 0,1")
     parser.add_argument("--threads", type=int, default=1, help="SimParams.threads (speed)")
     parser.add_argument("--jobs", type=int, default=1, help="worker processes (formation)")
     parser.add_argument(
@@ -144,9 +204,14 @@ def main() -> None:
     )
     args = parser.parse_args()
     if args.what == "speed":
-        speed(args.seconds, args.threads)
+        speed(args.seconds, args.threads, tuple((args.shapes or ",".join(SPEED_SHAPES)).split(",")))
+    elif args.what == "hash":
+        seeds = [int(s) for s in (args.hash_seeds or "0,1").split(",")]
+        hashes(args.seconds, args.threads, (args.shapes or "T,disc1000").split(","), seeds,
+               args.layout, tuple(args.damage))
     else:
-        formation(args.seeds, args.shapes.split(","), args.max_time, args.jobs, dict(args.et))
+        shapes = (args.shapes or "T,dumbbell,starfish").split(",")
+        formation(args.seeds, shapes, args.max_time, args.jobs, dict(args.et))
 
 
 if __name__ == "__main__":

@@ -10,6 +10,7 @@ pushes per robot-tick) over the timed ticks, since it grows as the swarm cluster
     .venv/bin/python benchmarks/profile_phases.py                    # N = 1000, 10 000
     .venv/bin/python benchmarks/profile_phases.py -n 30000 --warmup 600 --ticks 600
     .venv/bin/python benchmarks/profile_phases.py --threads 2   # the threaded loop
+    .venv/bin/python benchmarks/profile_phases.py --et disc1000 [--start 0 --seconds 300]
 
 The loop is compiled on every start (about 20 s), not cached. With ``--threads T`` (> 1)
 the threaded tick loop is timed instead, phase for phase as the kernel template in
@@ -32,6 +33,7 @@ from llvmlite import ir
 from numba import njit, prange, types
 from numba.extending import intrinsic
 
+from etswarm.algorithm.controller import et_step
 from etswarm.sim import RandomWalk, SimParams, Simulator, arena_side_for, random_world
 from etswarm.sim.collide import collide_phase
 from etswarm.sim.controllers.randomwalk import (
@@ -301,7 +303,91 @@ def profile(n: int, warmup: int, ticks: int, seed: int) -> dict[str, float]:
     return row
 
 
+@njit
+def _timed_et_ticks(n, tick0, cfg, grid, pos, heading, motor, led, alive, present, speed,
+                    turn_rate, tx_phase, out_on, out_type, out_data, in_count, in_type, in_data,
+                    in_dist, counters, dirty, dirty_flag, spare, trig, rng_motion, rng_radio,
+                    rng_ctl, mem, cycles):
+    """:func:`_timed_ticks` with the ET controller (``et_step``); returns the ticks run
+    (fewer when a robot raised the stop flag)."""
+    stop = mem[0]
+    n_dirty = grid_sync(grid, pos, present, dirty, dirty_flag, grid.state[2])
+    for k in range(n):
+        tick = tick0 + k
+        t0 = _cycles()
+        radio_phase(tick, cfg, grid, pos, alive, present, tx_phase, out_on, out_type,
+                    out_data, in_count, in_type, in_data, in_dist, counters, rng_radio)
+        t1 = _cycles()
+        et_step(tick, alive, in_count, in_type, in_data, in_dist, motor, led,
+                out_on, out_type, out_data, mem, rng_ctl)
+        t2 = _cycles()
+        n_dirty = move_phase(cfg, grid, pos, heading, motor, alive, present, speed,
+                             turn_rate, dirty, dirty_flag, n_dirty, trig, rng_motion)
+        t3 = _cycles()
+        n_dirty = collide_phase(cfg, grid, pos, present, motor, dirty, dirty_flag, n_dirty, spare,
+                                counters)
+        t4 = _cycles()
+        cycles[0] += t1 - t0
+        cycles[1] += t2 - t1
+        cycles[2] += t3 - t2
+        cycles[3] += t4 - t3
+        if stop[0] != 0:
+            return k + 1
+    return n
+
+
+def profile_et(shape: str, start_s: float, seconds: float) -> dict[str, float]:
+    """An ET run of ``shape`` (cluster layout, seed 0; "disc1000" as in bench_et.py) from
+    ``start_s`` simulated s for ``seconds``: µs per tick of each phase (cycles scaled by
+    the process's CPU time) and in total (CPU time), and the robots' states at the end.
+    The host's answers to Leaders are given; its measure checks are left out."""
+    import tempfile
+    from pathlib import Path
+
+    from bench_et import shape_path
+
+    from etswarm.algorithm.run import ETRun, RunConfig
+
+    run = ETRun(RunConfig(shape=shape_path(shape, Path(tempfile.mkdtemp())), seed=0,
+                          max_time_s=1e9, layout="cluster"))
+    run.advance(round(start_s * run.ticks_per_s))
+    sim, w, ctl = run.sim, run.world, run.controller
+    cycles = np.zeros(len(PHASES), dtype=np.uint64)
+
+    def call(k: int) -> int:
+        return int(_timed_et_ticks(
+            k, w.tick, sim.cfg, sim.grid, w.pos, w.heading, w.motor, w.led, w.alive,
+            w.present, w.speed, w.turn_rate, w.tx_phase, w.out_on, w.out_type, w.out_data,
+            w.in_count, w.in_type, w.in_data, w.in_dist, w.counters, sim._dirty,
+            sim._dirty_flag, sim._spare, sim._trig, sim.rng_motion, sim.rng_radio,
+            sim.rng_controller, ctl.mem, cycles))
+
+    call(0)  # compile
+    total = round(seconds * run.ticks_per_s)
+    cpu0 = time.process_time()
+    done = 0
+    while done < total:
+        k = call(min(310, total - done))
+        w.tick += k
+        done += k
+        if ctl.stop[0]:
+            run._answer_requests()
+    cpu = time.process_time() - cpu0
+    us_per_cycle = cpu / max(int(cycles.sum()), 1) * 1e6
+    row: dict[str, float] = {p: float(c) * us_per_cycle / done
+                             for p, c in zip(PHASES, cycles, strict=True)}
+    row["total"] = cpu / done * 1e6
+    row["states"] = np.bincount(ctl.states, minlength=8).tolist()  # type: ignore[assignment]
+    return row
+
+
 @click.command()
+@click.option("--et", "et_shape", default=None,
+              help="Time an ET run of this shape instead (e.g. disc1000, bigdisc, T).")
+@click.option("--start", type=float, default=0.0, show_default=True,
+              help="With --et: simulated s run before timing.")
+@click.option("--seconds", type=float, default=300.0, show_default=True,
+              help="With --et: simulated s timed.")
 @click.option("--robots", "-n", "sizes", type=int, multiple=True, default=(1000, 10_000),
               show_default=True)
 @click.option("--warmup", type=int, default=3100, show_default=True,
@@ -311,9 +397,16 @@ def profile(n: int, warmup: int, ticks: int, seed: int) -> dict[str, float]:
 @click.option("--threads", type=int, default=1, show_default=True,
               help="> 1: time the threaded loop on this many threads.")
 @click.option("--one-thread", is_flag=True, help="With --threads: run it on one thread.")
-def main(sizes: tuple[int, ...], warmup: int, ticks: int, seed: int, threads: int,
-         one_thread: bool) -> None:
-    """Per-phase ns per robot-tick of the random-walk benchmark."""
+def main(et_shape: str | None, start: float, seconds: float, sizes: tuple[int, ...],
+         warmup: int, ticks: int, seed: int, threads: int, one_thread: bool) -> None:
+    """Per-phase ns per robot-tick of the random-walk benchmark (or, with --et, µs per tick
+    of an ET run)."""
+    if et_shape is not None:
+        r = profile_et(et_shape, start, seconds)
+        print(f"ET {et_shape} from {start:.0f} s for {seconds:.0f} s, µs per tick (CPU time); "
+              f"load average {os.getloadavg()[0]:.2f}")
+        print(" ".join(f"{p} {r[p]:.1f}" for p in (*PHASES, "total")) + f"; states {r['states']}")
+        return
     if threads > 1:
         print(f"threaded loop: ns per robot-tick per thread after {warmup} ticks, over "
               f"{ticks} ticks; load average {os.getloadavg()[0]:.2f}")

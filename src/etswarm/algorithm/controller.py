@@ -89,6 +89,8 @@ from etswarm.algorithm.messages import (
 )
 from etswarm.algorithm.params import (
     C_EVAL_EVERY,
+    C_TICKS_CLEAR,
+    C_TICKS_NB_FRESH,
 )
 from etswarm.algorithm.placed import placed_rule
 from etswarm.algorithm.regeneration import (
@@ -101,6 +103,9 @@ from etswarm.algorithm.regeneration import (
 from etswarm.algorithm.release import queued_rule
 from etswarm.algorithm.search import search_rule
 from etswarm.algorithm.silent import encode_silent, ingest_silent, note_silent, sends_silent
+
+#: Added to ``ingest``'s answer for a status message that changed its row (see there).
+CHANGED = 8
 
 
 @njit(inline="always")
@@ -148,8 +153,10 @@ def near_epoch(own, wrapped, modulus):  # type: ignore[no-untyped-def]
 def ingest(i, k, tick, ri, in_type, in_data, in_dist, nb, nb_dist):  # type: ignore[no-untyped-def]
     """Store message k of robot i's inbox in its neighbour table (layouts in ``messages``).
 
-    Returns the message kind. A target announcement is kept in R_PEND_* when it is newer
-    than the one kept.
+    Returns the message kind, plus ``CHANGED`` for a status message that filled a new row
+    (a robot not in the table, or one that took another's row), brought a new state, or
+    came from or left the robot's target epoch. A target announcement is kept in R_PEND_*
+    when it is newer than the one kept.
     """
     kind = int(in_type[i, k]) & KIND_MASK
     sender = int(in_data[i, k, 0]) | (int(in_data[i, k, 1]) << 8)
@@ -187,9 +194,13 @@ def ingest(i, k, tick, ri, in_type, in_data, in_dist, nb, nb_dist):  # type: ign
             ri[i, R_PEND_TY] = ty - 256 if ty >= 128 else ty
         return kind
     state = int(in_data[i, k, 2]) & 0x0F
-    nb[i, slot, NB_EPOCH] = near_epoch(ri[i, R_EPOCH], int(in_type[i, k]) >> EPOCH_SHIFT, 32)
-    if nb[i, slot, NB_EPOCH] < ri[i, R_EPOCH]:
-        ri[i, R_ADOPTED_AT] = tick  # it works for an older target: relay the newer one
+    own = ri[i, R_EPOCH]
+    changed = created or nb[i, slot, NB_EPOCH] != own or nb[i, slot, NB_STATE] != state
+    nb[i, slot, NB_EPOCH] = near_epoch(own, int(in_type[i, k]) >> EPOCH_SHIFT, 32)
+    if nb[i, slot, NB_EPOCH] != own:
+        changed = True
+        if nb[i, slot, NB_EPOCH] < own:
+            ri[i, R_ADOPTED_AT] = tick  # it works for an older target: relay the newer one
     if not created and nb[i, slot, NB_STATE] != state:
         nb[i, slot, NB_PREV] = nb[i, slot, NB_STATE]
     nb[i, slot, NB_STATE] = state
@@ -204,7 +215,39 @@ def ingest(i, k, tick, ri, in_type, in_data, in_dist, nb, nb_dist):  # type: ign
         nb[i, slot, NB_RELEASED] = int(in_data[i, k, 7]) | (int(in_data[i, k, 8]) << 8)
         nb[i, slot, NB_HOPS] = int(in_data[i, k, 5])
         nb[i, slot, NB_ANCHORED] = int(in_data[i, k, 6])
-    return kind
+    return kind + CHANGED if changed else kind
+
+
+
+@njit(inline="always")
+def idle_wake(i, k, tick, wake, ri, in_data, ci):  # type: ignore[no-untyped-def]
+    """A sleeping Queued robot's wake tick (``wake``, see ``release.queued_rule``) after it
+    filed status message k of its inbox, which changed nothing of its row but the time and
+    the contents (else it wakes: 0). Its next evaluation could decide otherwise when the
+    message brings a higher released count or a lower Queued ID than the lowest it
+    heard; hearing the lowest again keeps that entry fresh for longer, and a searcher
+    heard by the robot that is lowest itself restarts its wait for a clear repository.
+    (The robot's ``R_QMIN``, ``R_RELEASED`` and epoch do not change while it sleeps.)
+    A placed robot sleeps only till its next due tick, when it evaluates whatever it heard.
+    """
+    if ri[i, R_STATE] != QUEUED:
+        return wake
+    state = int(in_data[i, k, 2]) & 0x0F
+    if state > SEARCH:
+        return wake
+    if (int(in_data[i, k, 7]) | (int(in_data[i, k, 8]) << 8)) > ri[i, R_RELEASED]:
+        return 0
+    qmin = ri[i, R_QMIN]
+    if state == SEARCH:
+        if qmin == i:
+            return max(wake, tick + ci[C_TICKS_CLEAR])
+        return wake
+    sender = int(in_data[i, k, 0]) | (int(in_data[i, k, 1]) << 8)
+    if sender < qmin:
+        return 0
+    if sender == qmin:
+        return tick + ci[C_TICKS_NB_FRESH] + 1
+    return wake
 
 
 @njit(inline="always")
@@ -295,7 +338,7 @@ def et_part(  # type: ignore[no-untyped-def]
     and only ever to the same value, read after the threads meet. So parts may run at once
     on disjoint ranges, in any order, and give what one pass over all robots gives.
     """
-    stop, ri, nb, nb_dist, gene_flag, gene_nn, slot_info, ci, cf, walk_seen, held = mem
+    stop, ri, nb, nb_dist, gene_flag, gene_nn, slot_info, ci, cf, walk_seen, held, idle = mem
     every = ci[C_EVAL_EVERY]
     phase = (tick + lo) % every  # (tick + i) % every, kept without a division per robot
     for i in range(lo, hi):
@@ -305,16 +348,31 @@ def et_part(  # type: ignore[no-untyped-def]
             phase = 0
         if not alive[i]:
             continue
+        count = in_count[i]
+        wake = idle[i]
+        if wake > tick and count == 0:
+            continue  # a sleeping Queued robot that heard nothing: nothing to do
         new_msgs = False
         election_heard = False
-        for k in range(in_count[i]):
+        for k in range(count):
             kind = ingest(i, k, tick, ri, in_type, in_data, in_dist, nb, nb_dist)
             if kind == MSG_STATUS:
                 new_msgs = True
                 if int(in_data[i, k, 2]) & 0x0F == LEADER:
                     ri[i, R_WALK_SEEN] = tick  # a census walker: send it our tag
-            elif kind == MSG_ELECT:
-                election_heard = True
+                if wake > 0:
+                    wake = idle_wake(i, k, tick, wake, ri, in_data, ci)
+            elif kind == MSG_STATUS + CHANGED:
+                new_msgs = True
+                if int(in_data[i, k, 2]) & 0x0F == LEADER:
+                    ri[i, R_WALK_SEEN] = tick
+                wake = 0
+            else:
+                wake = 0
+                if kind == MSG_ELECT:
+                    election_heard = True
+        if count:
+            idle[i] = wake
         if election_heard and ri[i, R_PHASE] == PHASE_NORMAL:
             for m in range(nb.shape[1]):
                 if nb[i, m, NB_ID] >= 0 and nb[i, m, NB_EEPOCH] == ri[i, R_EPOCH] + 1:
@@ -347,11 +405,27 @@ def et_part(  # type: ignore[no-untyped-def]
         elif not due:
             continue
         elif state == QUEUED:
+            if wake > tick:
+                continue  # asleep: the rule would change nothing (motor stopped, message sent)
             motor[i] = STOP
-            queued_rule(i, tick, ri, nb, ci, slot_info[slot, SLOT_LIMIT])
+            wake = queued_rule(i, tick, ri, nb, ci, slot_info[slot, SLOT_LIMIT])
+            if ri[i, R_PEND_EPOCH] > ri[i, R_EPOCH] or (
+                ri[i, R_EPOCH] > 0 and tick - ri[i, R_ADOPTED_AT] < TARGET_RELAY_TICKS
+            ):
+                wake = 0  # it has a newer target to catch up with, or relays its target
+            idle[i] = wake
         elif INACTIVE <= state <= STABLE:
             motor[i] = STOP
             placed_rule(i, tick, ri, nb, nb_dist, ci, cf)
+            if (
+                ri[i, R_PHASE] == PHASE_NORMAL
+                and INACTIVE <= ri[i, R_STATE] <= STABLE
+                and ri[i, R_PEND_EPOCH] <= ri[i, R_EPOCH]
+            ):
+                # Until its next due tick it does nothing unless it hears something.
+                idle[i] = tick + every
+            else:
+                idle[i] = 0
         else:
             motor[i] = STOP
         if ri[i, R_STATE] != SEARCH:

@@ -61,6 +61,9 @@ class ETController:
 
     def __init__(self, n_robots: int, target: np.ndarray, et: ETParams, ticks_per_s: int):
         self.ri, self.nb, self.nb_dist = allocate(n_robots)
+        # Per robot, the tick until which it sleeps unless it hears something new (0: awake;
+        # see ``controller.et_part``). A host that edits a robot's memory must wake it.
+        self.idle = np.zeros(n_robots, dtype=np.int64)
         self.stop = np.zeros(1, dtype=np.int64)
         self.et = et
         self.ticks_per_s = ticks_per_s
@@ -137,6 +140,7 @@ class ETController:
             self.cf,
             self.walk_seen,
             self.held,
+            self.idle,
         )
 
     def seed(self, layout: Layout) -> None:
@@ -152,6 +156,7 @@ class ETController:
             ri[rid, R_NN] = self.gene_nn[0, x - self.x0, y - self.y0]
             ri[rid, R_HAS_TAG] = 1
             ri[rid, R_SINCE] = 0
+        self.idle[:] = 0
 
     # -- what robots report ----------------------------------------------------------------
     @property
@@ -189,4 +194,5 @@ class ETController:
             slot = self.add_target(cells, release_limit=len(cells), tx=tx, ty=ty)
         self.ri[leader, R_NEWSLOT] = slot
         self.ri[leader, R_REQUEST] = 2
+        self.idle[leader] = 0  # its memory changed (a Leader never sleeps; to be sure)
         return slot

@@ -5,11 +5,14 @@ A robot's memory is one row of ``ri`` (int64 fields) plus its neighbour table, o
 memory only; the controller never reads another robot's row.
 
 ``mem`` passed to the simulator is the tuple
-``(stop, ri, nb, nb_dist, gene_flag, gene_nn, slot_info, ci, cf, walk_seen, held)``:
+``(stop, ri, nb, nb_dist, gene_flag, gene_nn, slot_info, ci, cf, walk_seen, held, idle)``:
 
 - ``stop``       (1,) int64: nonzero asks the simulator to end the chunk (host work needed)
 - ``ri``         (N, R_FIELDS) int64: the fields ``R_*`` below
-- ``nb``         (N, M, NB_FIELDS) int64: neighbour table, fields ``NB_*``; NB_ID -1 = empty
+- ``nb``         (N, M, NB_FIELDS) int64: neighbour table, fields ``NB_*``; NB_ID -1 = empty.
+  Stored field by field (a transposed view of an (N, NB_FIELDS, M) array): a robot's M
+  values of one field lie together, so a scan of the table over a few fields (finding a
+  sender, the Queued robots' rule) reads a few cache lines instead of one per row
 - ``nb_dist``    (N, M) float64: last distance estimate to that neighbour, mm
 - ``gene_flag``  (S, GX, GY) uint8 and ``gene_nn`` (S, GX, GY) int8: the genes of up to S
   targets (slot 0: the original shape; later slots: scaled shapes made by regeneration) as
@@ -22,6 +25,9 @@ memory only; the controller never reads another robot's row.
   remnant as Leader (census ``walk``; grid as the genes'); (N, 1, 1) when census ``tree``
 - ``held``       (N, WX, WY) uint8: per searching robot, the sites it has heard held (see
   ``site_memory``; a window of the original shape's extent plus one site on every side)
+- ``idle``       (N,) int64: per robot, the tick until which it sleeps unless it hears
+  something new (0: awake; Queued robots whose next evaluations could change nothing,
+  see ``controller.et_part``); the host zeroes a robot's entry when it edits its memory
 """
 
 from __future__ import annotations
@@ -165,8 +171,9 @@ NB_SLOTS = 16
 def allocate(n_robots: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Return zeroed ``(ri, nb, nb_dist)`` for ``n_robots`` robots, all Queued.
 
-    Shapes: ri (N, R_FIELDS) int64, nb (N, NB_SLOTS, NB_FIELDS) int64 with NB_ID = -1,
-    nb_dist (N, NB_SLOTS) float64.
+    Shapes: ri (N, R_FIELDS) int64, nb (N, NB_SLOTS, NB_FIELDS) int64 with NB_ID = -1
+    (a view with the fields outermost per robot, see the module docstring), nb_dist
+    (N, NB_SLOTS) float64.
     """
     ri = np.zeros((n_robots, R_FIELDS), dtype=np.int64)
     ri[:, R_STATE] = State.QUEUED
@@ -182,7 +189,7 @@ def allocate(n_robots: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     ri[:, R_PEND_EPOCH] = -1
     ri[:, R_CANDIDATE] = 1
     ri[:, R_WALK_SEEN] = -(1 << 40)
-    nb = np.zeros((n_robots, NB_SLOTS, NB_FIELDS), dtype=np.int64)
+    nb = np.zeros((n_robots, NB_FIELDS, NB_SLOTS), dtype=np.int64).transpose(0, 2, 1)
     nb[:, :, NB_ID] = -1
     nb[:, :, NB_PREV] = -1
     nb[:, :, NB_EEPOCH] = -1

@@ -54,6 +54,8 @@ from etswarm.algorithm.search import begin_search
 
 #: Hop count of a Queued robot that knows no way to the shape (also the largest count).
 HOPS_NONE = 255
+#: ``queued_rule``'s answer for a robot whose evaluation nothing but a message can change.
+NEVER = 1 << 62
 
 
 @njit
@@ -89,7 +91,18 @@ def queued_rule(i, tick, ri, nb, ci, limit):  # type: ignore[no-untyped-def]
     of the queue one robot after another, as in the paper; in a cluster or after a
     regeneration, robots far apart may leave at the same time. With ``C_RELEASE_FAR``, in
     a regenerated remnant the robot that leaves is the one with the most hops to the shape
-    among those it hears (ties: the lowest ID), see the module docstring.
+    among those it hears (ties: the lowest ID), see the module docstring. With
+    ``C_TICKS_HOLD`` (``release_hold_s``) it also waits out the release hold it heard of
+    (``R_HOLD_UNTIL``, see ``ETParams.release_hold_s``).
+
+    Returns the first tick at which a later evaluation could give something else if the
+    robot hears nothing new meanwhile (``NEVER``: none), or 0 when that is not known (it
+    left, it releases farthest first, or the release hold is on). Without new messages the
+    table only ages, and an entry that ages out of ``fresh`` can only lower the released
+    count it gave, which the robot keeps; so what changes is: the lowest Queued ID heard
+    falls stale (at its last hearing + ``fresh`` + 1), or, when the robot is the lowest
+    itself, its waits end (the release count below ``limit``; it never leaves otherwise).
+    The controller lets the robot sleep till then (``controller.idle_wake``).
     """
     fresh = ci[C_TICKS_NB_FRESH]
     released = ri[i, R_RELEASED]
@@ -102,6 +115,7 @@ def queued_rule(i, tick, ri, nb, ci, limit):  # type: ignore[no-untyped-def]
     lowest_hops = ri[i, R_SHAPE_HOPS]
     hold_ticks = ci[C_TICKS_HOLD]
     hold = ri[i, R_HOLD_UNTIL]
+    lowest_last = 0  # tick the lowest Queued robot heard was last heard
     for m in range(nb.shape[1]):
         sid = nb[i, m, NB_ID]
         if sid < 0 or nb[i, m, NB_EPOCH] != epoch:
@@ -129,6 +143,7 @@ def queued_rule(i, tick, ri, nb, ci, limit):  # type: ignore[no-untyped-def]
                 lowest_hops = hops
         elif sid < lowest:
             lowest = sid
+            lowest_last = nb[i, m, NB_LAST]
     ri[i, R_HOLD_UNTIL] = hold
     if released != ri[i, R_RELEASED]:
         ri[i, R_RELEASED] = released
@@ -148,3 +163,16 @@ def queued_rule(i, tick, ri, nb, ci, limit):  # type: ignore[no-untyped-def]
         ri[i, R_FLOOR] = i
         ri[i, R_FLOOR_SINCE] = tick
         ri[i, R_RELEASED] = released + 1
+        return 0
+    if far_first or hold_ticks > 0:
+        # (with the release hold its status changes with every tick: it stays awake)
+        return 0
+    if lowest != i:
+        return lowest_last + fresh + 1
+    if released >= limit:
+        return NEVER
+    return max(
+        last_searcher + ci[C_TICKS_CLEAR],
+        ri[i, R_QMIN_SINCE] + ci[C_TICKS_QUIET],
+        ri[i, R_FLOOR_SINCE] + ci[C_TICKS_RELEASE],
+    )

@@ -139,6 +139,7 @@ class ETRun:
         self.reformed_at: dict[int, float] = {}
         self.census: dict[int, dict[str, Any]] = {}
         self._detected_for: float | None = -1.0
+        self._target_sizes: dict[int, int] = {}  # distinct tags per target slot (_check)
         self.wall_s = 0.0
         #: Optional :class:`etswarm.sim.recorder.Recorder`, fed at every measure check.
         self.recorder: Any = None
@@ -296,7 +297,9 @@ class ETRun:
         if len(danger) and self._detected_for != self.last_damage_s:
             self._detected_for = self.last_damage_s
             self._event("detected", robots=len(danger))
-        comps = self.component_report()
+        if not self._may_settle():
+            return  # no remnant can be formed or too small: nothing to note
+        comps = self._check_report()
         for comp in comps:
             slot = comp["slot"]
             if comp["formed"] and slot not in self.reformed_at:
@@ -312,6 +315,57 @@ class ETRun:
             and all(c["formed"] or c["too_small"] for c in comps)
         ):
             self.settled_at_s = self.sim_time_s
+
+    def _target_size(self, slot: int) -> int:
+        """Distinct tags of target ``slot``'s cells (targets never change once stored)."""
+        size = self._target_sizes.get(slot)
+        if size is None:
+            cells = self.controller.slot_cells[slot]
+            size = len({(int(x), int(y)) for x, y in np.asarray(cells).reshape(-1, 2)})
+            self._target_sizes[slot] = size
+        return size
+
+    def _may_settle(self) -> bool:
+        """False when no remnant can be formed or too small now, so that the full check
+        (:meth:`_check_report`) would find nothing: a remnant is formed only when every
+        tag of its target is held by one of its Stable robots, so it has at least that
+        many Stable robots, and it is too small only with an empty scaled target. The
+        remnant's target is the slot most of its robots work for, one of the slots the
+        live robots work for; so when no such slot is empty and the live Stable robots
+        are fewer than the least target of those slots, none is either."""
+        live = self.world.present & self.world.alive
+        if not live.any():
+            return False
+        slots = np.unique(self.controller.ri[live, R_TSLOT])
+        least = min(self._target_size(int(slot)) for slot in slots)
+        if least == 0:
+            return True
+        stable = int(np.count_nonzero(live & (self.controller.states == State.STABLE)))
+        return stable >= least
+
+    def _check_report(self) -> list[dict[str, Any]]:
+        """What :meth:`_check` needs of :meth:`component_report` (per group: its slot,
+        target size, formed, too small), without the measures it does not use."""
+        holds, stable = self._masks()
+        tags = self.controller.tags
+        report = []
+        for group in self._groups():
+            slot = self._slot_of(group)
+            target = self.controller.slot_cells[slot]
+            formed = False
+            if len(target) > 0 and int(np.count_nonzero(stable[group])) >= self._target_size(slot):
+                member = np.zeros(self.world.n, dtype=bool)
+                member[group] = True
+                formed = is_formed(tags, holds & member, stable & member, target)
+            report.append(
+                {
+                    "target_cells": len(target),
+                    "formed": bool(formed),
+                    "too_small": slot != 0 and len(target) == 0,
+                    "slot": slot,
+                }
+            )
+        return report
 
     @property
     def finished(self) -> bool:
