@@ -28,24 +28,26 @@ TICK = 100_000
 LOST_FOR = 31 * 2000
 
 
-def steer_lost(anchored: int, beacon: str = "on") -> int:
-    """Motor command of searcher 0, lost for ``LOST_FOR`` ticks, hearing only searcher 5
-    at 55 mm (anchored or not), with the ``lost_beacon`` option ``beacon``."""
-    ri, nb, nb_dist = allocate(1)
-    begin_search(0, TICK - LOST_FOR - 10, ri)
-    ri[0, R_LOST_SINCE] = TICK - LOST_FOR + 1
-    nb[0, 0, NB_ID] = 5
-    nb[0, 0, NB_STATE] = SEARCH
-    nb[0, 0, NB_LAST] = TICK
-    nb[0, 0, NB_ANCHORED] = anchored
-    nb_dist[0, 0] = 55.0
+def steer_lost(anchored: int, beacon: str = "on", me: int = 0, other: int = 5,
+               dist_mm: float = 55.0, lost_yield: str = "on") -> int:
+    """Motor command of searcher ``me``, lost for ``LOST_FOR`` ticks, hearing only searcher
+    ``other`` at ``dist_mm`` (anchored or not), with the ``lost_beacon`` option ``beacon``
+    and the ``lost_yield`` option ``lost_yield``."""
+    ri, nb, nb_dist = allocate(max(me, other) + 1)
+    begin_search(me, TICK - LOST_FOR - 10, ri)
+    ri[me, R_LOST_SINCE] = TICK - LOST_FOR + 1
+    nb[me, 0, NB_ID] = other
+    nb[me, 0, NB_STATE] = SEARCH
+    nb[me, 0, NB_LAST] = TICK
+    nb[me, 0, NB_ANCHORED] = anchored
+    nb_dist[me, 0] = dist_mm
     gene = np.ones((3, 3), dtype=np.uint8)
     gene_nn = np.full((3, 3), 6, dtype=np.int8)
-    ci, cf = ETParams(lost_beacon=beacon).pack(31, gene_x0=-1, gene_y0=-1)
-    motor = np.full(1, FORWARD, dtype=np.uint8)
-    held = np.zeros((1, 1, 1), dtype=np.uint8)
-    search_rule(0, TICK, True, ri, nb, nb_dist, motor, gene, gene_nn, ci, cf, held, 0, 0)
-    return int(motor[0])
+    ci, cf = ETParams(lost_beacon=beacon, lost_yield=lost_yield).pack(31, gene_x0=-1, gene_y0=-1)
+    motor = np.full(ri.shape[0], FORWARD, dtype=np.uint8)
+    held = np.zeros((ri.shape[0], 1, 1), dtype=np.uint8)
+    search_rule(me, TICK, True, ri, nb, nb_dist, motor, gene, gene_nn, ci, cf, held, 0, 0)
+    return int(motor[me])
 
 
 def test_a_lost_searcher_turns_towards_a_searcher_that_hears_the_group() -> None:
@@ -69,27 +71,11 @@ def test_a_searcher_says_whether_it_hears_a_stationary_robot() -> None:
     assert out_data[0, 6] == 0
 
 
-def steer_lost_beside_lower(lost_yield: str) -> int:
-    """Motor command of searcher 6, lost, hearing only searcher 2 (a lower ID) at 45 mm."""
-    ri, nb, nb_dist = allocate(7)
-    begin_search(6, TICK - LOST_FOR - 10, ri)
-    ri[6, R_LOST_SINCE] = TICK - LOST_FOR + 1
-    nb[6, 0, NB_ID] = 2
-    nb[6, 0, NB_STATE] = SEARCH
-    nb[6, 0, NB_LAST] = TICK
-    nb_dist[6, 0] = 45.0
-    gene = np.ones((3, 3), dtype=np.uint8)
-    gene_nn = np.full((3, 3), 6, dtype=np.int8)
-    ci, cf = ETParams(lost_yield=lost_yield).pack(31, gene_x0=-1, gene_y0=-1)
-    motor = np.full(7, FORWARD, dtype=np.uint8)
-    held = np.zeros((7, 1, 1), dtype=np.uint8)
-    search_rule(6, TICK, True, ri, nb, nb_dist, motor, gene, gene_nn, ci, cf, held, 0, 0)
-    return int(motor[6])
-
-
 def test_a_lost_searcher_need_not_yield() -> None:
     # Traced on T seed 1 (settle retries and release hold on): four searchers pushed off
     # the end of the crossbar lost the group and parked beside each other, each yielding
     # to a lower ID, and drifted 0.5 m away as a clump for 25 min.
-    assert steer_lost_beside_lower("on") == STOP
-    assert steer_lost_beside_lower("off") == int(lost_motion(TICK, TICK - LOST_FOR))
+    # Searcher 6, lost, hears only searcher 2 (a lower ID) at 45 mm.
+    assert steer_lost(0, me=6, other=2, dist_mm=45.0, lost_yield="on") == STOP
+    spiral = int(lost_motion(TICK, TICK - LOST_FOR))
+    assert steer_lost(0, me=6, other=2, dist_mm=45.0, lost_yield="off") == spiral

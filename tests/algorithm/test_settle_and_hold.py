@@ -1,7 +1,6 @@
 """Options that speed the first formation up: a settled searcher's wider confirmation
 window and its retries (``settle_tol_scale``, ``settle_retries``), and the release hold
-that searchers queuing at the shape send back along the repository (``release_hold_s``,
-``hold_surplus_s``)."""
+that searchers queuing at the shape send back along the repository (``release_hold_s``)."""
 
 from __future__ import annotations
 
@@ -150,7 +149,7 @@ def test_a_searcher_says_when_it_yields() -> None:
 @pytest.mark.parametrize(
     ("name", "value"),
     [("settle_retries", -1), ("release_hold_s", -5.0), ("settle_tol_scale", 0.5),
-     ("hold_surplus_s", -1.0), ("widen_s", 0.0)],
+     ("widen_s", 0.0)],
 )
 def test_bad_values_are_rejected(name: str, value: float) -> None:
     with pytest.raises(EtswarmError, match=name):

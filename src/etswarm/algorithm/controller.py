@@ -64,7 +64,6 @@ from etswarm.algorithm.memory import (
     R_SHAPE_HOPS,
     R_STATE,
     R_SUBCOUNT,
-    R_SURPLUS_AT,
     R_TAG_X,
     R_TAG_Y,
     R_TS,
@@ -301,9 +300,7 @@ def encode(i, tick, ri, out_on, out_type, out_data):  # type: ignore[no-untyped-
         out_data[i, 5] = min(ri[i, R_SHAPE_HOPS], 255)
         if state == SEARCH:
             anchored = ANCHORED_BIT if ri[i, R_LOST_SINCE] == 0 else 0
-            surplus = ri[i, R_SURPLUS_AT] > 0 and tick + 1 >= ri[i, R_SURPLUS_AT]
-            jammed = ri[i, R_YIELD_SINCE] >= 0 or surplus
-            out_data[i, 6] = anchored | (YIELDING_BIT if jammed else 0)
+            out_data[i, 6] = anchored | (YIELDING_BIT if ri[i, R_YIELD_SINCE] >= 0 else 0)
         else:
             left = (ri[i, R_HOLD_UNTIL] - tick + HOLD_UNIT_TICKS - 1) // HOLD_UNIT_TICKS
             out_data[i, 6] = min(max(left, 0), 255)

@@ -125,8 +125,7 @@ RECENT_REFS = 4
 R_NEW_REF_MOVED = R_RECENT0 + RECENT_REFS  # ticks moved since a reference not among them
 R_SETTLE_TRIES = R_NEW_REF_MOVED + 1  # settle periods a searcher has stood on its candidate
 R_HOLD_UNTIL = R_SETTLE_TRIES + 1  # a Queued robot releases no robot before this tick
-R_SURPLUS_AT = R_HOLD_UNTIL + 1  # 1 + tick from which a searcher counts as jammed (0: never)
-R_FIELDS = R_SURPLUS_AT + 1
+R_FIELDS = R_HOLD_UNTIL + 1
 
 PHASE_NORMAL = 0
 PHASE_ELECTING = 1

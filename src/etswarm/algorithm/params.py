@@ -39,9 +39,8 @@ C_SILENT_SITES = 23  # 1: electing robots note and flood the sites that fell sil
 C_LOST_BEACON = 24  # 1: a lost searcher follows a searcher that hears a stationary robot
 C_SETTLE_RETRIES = 25  # a settled searcher that cannot confirm its site stays this many times
 C_TICKS_HOLD = 26  # a Queued robot that hears a yielding searcher holds releases this long
-C_TICKS_SURPLUS = 27  # a searcher this long at the shape without a site counts as jammed
-C_LOST_YIELD = 28  # 1: a lost searcher yields to lower-ID searchers as on the edge
-N_CI = 29
+C_LOST_YIELD = 27  # 1: a lost searcher yields to lower-ID searchers as on the edge
+N_CI = 28
 
 F_SPACING = 0  # lattice spacing d
 F_PAIR_TOL = 1  # two references within this of d trigger a site candidate
@@ -69,7 +68,7 @@ ORBIT_MODES = ("bounce", "clockwise")
 
 #: Parameters that may be zero (all others must be positive).
 NON_NEGATIVE: frozenset[str] = frozenset(
-    {"pair_aim_relax_s", "settle_retries", "release_hold_s", "hold_surplus_s"}
+    {"pair_aim_relax_s", "settle_retries", "release_hold_s"}
 )
 #: Parameters that may take any sign.
 SIGNED = frozenset({"pair_aim_mm", "follow_offset_mm"})
@@ -162,9 +161,6 @@ class ETParams:
     #: leaves while searchers queue up at the shape. 0: no hold (releases are paced by
     #: ``release_interval_s`` and ``release_clear_s`` alone).
     release_hold_s: float = 0.0
-    #: ... and so does a searcher that has been at the shape this long without finding a
-    #: site (more searchers than free sites); 0: only yielding counts.
-    hold_surplus_s: float = 0.0
     #: In the first formation, along the repository (no placed robot heard yet) a searcher
     #: near its aim drives straight on instead of pivoting ("on"), or pivots to and fro as
     #: along the shape ("off", the paper's edge-following). After a regeneration the
@@ -259,7 +255,6 @@ class ETParams:
         ci[C_RELEASE_FAR] = 1 if self.release_order == "far" else 0
         ci[C_SETTLE_RETRIES] = self.settle_retries
         ci[C_TICKS_HOLD] = round(self.release_hold_s * ticks_per_s)
-        ci[C_TICKS_SURPLUS] = round(self.hold_surplus_s * ticks_per_s)
         cf = np.zeros(N_CF, dtype=np.float64)
         cf[F_SPACING] = self.spacing_mm
         cf[F_PAIR_TOL] = self.pair_tol_mm

@@ -53,7 +53,6 @@ from etswarm.algorithm.memory import (
     R_SHAPE_SINCE,
     R_SUB,
     R_SUB_SINCE,
-    R_SURPLUS_AT,
     R_TAG_X,
     R_TAG_Y,
     R_TOWARD_SINCE,
@@ -80,7 +79,6 @@ from etswarm.algorithm.params import (
     C_TICKS_MOVE_FRESH,
     C_TICKS_NB_FRESH,
     C_TICKS_SETTLE,
-    C_TICKS_SURPLUS,
     C_TICKS_YIELD_MAX,
     F_AIM_RELAX,
     F_BALANCE_TOL,
@@ -157,7 +155,6 @@ def begin_search(i, tick, ri):  # type: ignore[no-untyped-def]
     ri[i, R_ORBIT] = 0
     ri[i, R_ON_SHAPE] = 0
     ri[i, R_SHAPE_SINCE] = 0
-    ri[i, R_SURPLUS_AT] = 0
     ri[i, R_CREEP_UNTIL] = 0
     ri[i, R_LOST_SINCE] = 0
     ri[i, R_TOWARD_SINCE] = tick
@@ -596,8 +593,6 @@ def search_rule(  # type: ignore[no-untyped-def]
         ri[i, R_ON_SHAPE] = 1
         if ri[i, R_SHAPE_SINCE] == 0:
             ri[i, R_SHAPE_SINCE] = tick + 1
-            if ci[C_TICKS_SURPLUS] > 0:
-                ri[i, R_SURPLUS_AT] = tick + 1 + ci[C_TICKS_SURPLUS]
     elif queued_slot >= 0:
         if ci[C_ORBIT_BOUNCE] == 1 and ri[i, R_ON_SHAPE] == 1:
             # Left the shape along the repository: go back round the shape the other way
