@@ -63,3 +63,21 @@ def test_targets_are_drawn_where_the_remnants_are() -> None:
     # every site of every remnant's target lies under one of its robots (formed, moved away)
     nearest = np.min(np.hypot(*(sites[:, None, :] - pos[None, :, :]).transpose(2, 0, 1)), axis=1)
     assert nearest.max() < 20.0
+
+
+@pytest.mark.parametrize(
+    ("shape", "damage", "seed"),
+    # Before robots cleared their neighbour bits on taking a site, these runs elected 5
+    # times for two remnants: a robot re-placed after the regeneration sent the bits of
+    # the site it held before, a neighbour counted a free site as held, turned Stable,
+    # then fell below its count and started a new election.
+    [("T", "split x=mid", 6), ("arrow", "split y=mid", 2)],
+)
+def test_each_remnant_elects_once_and_regrows(shape: str, damage: str, seed: int) -> None:
+    run = ETRun(RunConfig(shape=shape, seed=seed, max_time_s=4 * 3600, damage=(damage,)))
+    summary = run.run()
+    leaders = [e for e in summary["events"] if e["kind"] == "leader"]
+    assert len(leaders) == len(summary["components"]), summary["events"]
+    assert summary["settled"], summary["components"]
+    assert all(comp["formed"] and comp["jaccard"] == 1.0 for comp in summary["components"])
+    assert summary["duplicate_tags"] == []

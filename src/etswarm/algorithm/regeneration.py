@@ -66,6 +66,7 @@ from etswarm.algorithm.memory import (
     R_HAS_TAG,
     R_HOP,
     R_LEADER,
+    R_MASK,
     R_NEWSLOT,
     R_NN,
     R_PARENT,
@@ -237,6 +238,7 @@ def adopt_target(i, tick, ri, nb, slot, epoch, leader, gene_flag, gene_nn, slot_
     ri[i, R_LEADER] = leader
     ri[i, R_BELOW_SINCE] = -1
     ri[i, R_COUNT] = 0
+    ri[i, R_MASK] = 0  # what it observed was of the old target (see ``search.search_rule``)
     ri[i, R_SILENT_N] = 0  # the silent sites were for this election
     x = ri[i, R_TAG_X]
     y = ri[i, R_TAG_Y]

@@ -41,6 +41,7 @@ from etswarm.algorithm.memory import (
     R_FROM_ID,
     R_HAS_TAG,
     R_LOST_SINCE,
+    R_MASK,
     R_NEW_REF_MOVED,
     R_NN,
     R_ON_SHAPE,
@@ -670,6 +671,10 @@ def search_rule(  # type: ignore[no-untyped-def]
             ri[i, R_TS] = min_ts + 1
             ri[i, R_HAS_TAG] = 1
             ri[i, R_COUNT] = 0
+            # It has observed no neighbour of this site yet; a mask left from a site it
+            # held before a regeneration, sent before its first evaluation, would make
+            # its neighbours count sites that nobody holds.
+            ri[i, R_MASK] = 0
             ri[i, R_BELOW_SINCE] = -1
         else:
             ri[i, R_SUB] = SUB_FOLLOW
