@@ -57,3 +57,26 @@ def test_fewer_robots_than_cells_says_so() -> None:
     assert any("cannot be completed" in note for note in run.notes)
     fitted = ETRun(RunConfig(shape="triangle", robots=10, seed=0, max_time_s=60, fit=True))
     assert len(fitted.target) == 10
+
+
+def test_an_unfinished_run_says_which_sites_are_free_and_who_searches() -> None:
+    from etswarm.algorithm.states import PLACED_STATES
+    from etswarm.cli.run_outputs import describe
+
+    run = run_formation("T", 0, max_time_s=900.0)
+    summary = run.summary()
+    assert not summary["formed"] and not summary["settled"]
+    states = run.controller.states
+    live = run.world.present & run.world.alive
+    placed = live & np.isin(states, [int(s) for s in PLACED_STATES])
+    held = {tuple(t) for t in run.controller.tags[placed].tolist()}
+    target = {tuple(t) for t in run.target.tolist()}
+    # The group holding the shape's robots lists exactly the target sites nobody holds.
+    main = max(summary["components"], key=lambda c: c["robots"])
+    assert main["free_sites"] == len(target - held) > 0
+    assert {tuple(t) for t in main["free_tags"]} <= target - held
+    assert len(main["free_tags"]) == min(main["free_sites"], 20)
+    assert sum(c["searching"] for c in summary["components"]) == int(
+        np.count_nonzero(live & (states == State.SEARCH))
+    )
+    assert any(f"{main['free_sites']} target sites free" in line for line in describe(summary))

@@ -36,6 +36,7 @@ from etswarm.measures.formation import (
     apply_fit,
     components,
     duplicate_tags,
+    free_sites,
     is_formed,
     jaccard,
     placement_error_mm,
@@ -50,6 +51,8 @@ from etswarm.sim.world import World
 
 #: Ticks per measurement check while running (10 simulated seconds).
 CHECK_EVERY_TICKS = 310
+#: A component's report lists at most this many of its free target sites.
+FREE_SITES_SHOWN = 20
 
 
 @dataclass(frozen=True)
@@ -403,6 +406,7 @@ class ETRun:
         """Per radio-connected group of working robots: its target and how it stands."""
         holds, stable = self._masks()
         tags = self.controller.tags
+        states = self.controller.states
         report = []
         for group in self._groups():
             member = np.zeros(self.world.n, dtype=bool)
@@ -417,6 +421,7 @@ class ETRun:
             done = self.reformed_at.get(slot)
             if g_formed and done is None:
                 done = self.sim_time_s
+            free = free_sites(tags, g_holds, target) if len(target) else []
             report.append(
                 {
                     "robots": len(group),
@@ -427,6 +432,11 @@ class ETRun:
                     "time_to_stable_s": None if done is None else round(done - start, 3),
                     "too_small": bool(too_small),
                     "slot": slot,
+                    # Why a remnant is not formed: the sites still free (at most
+                    # FREE_SITES_SHOWN of them listed) and the robots still searching.
+                    "free_sites": len(free),
+                    "free_tags": [list(t) for t in free[:FREE_SITES_SHOWN]],
+                    "searching": int(np.count_nonzero(states[group] == State.SEARCH)),
                 }
             )
         return report

@@ -160,4 +160,29 @@ def describe(summary: dict[str, Any]) -> list[str]:
                     else ""
                 )
             )
+    if not summary["settled"]:
+        lines.extend(missing_lines(summary["components"]))
+    return lines
+
+
+def missing_lines(components: list[dict[str, Any]]) -> list[str]:
+    """Lines on what the unformed groups of robots lack: free sites and searchers; lone
+    robots out of range of every other (lost searchers) on one line."""
+    lines = []
+    lone = 0
+    for k, comp in enumerate(components):
+        if comp["formed"] or comp["too_small"]:
+            continue
+        if comp["robots"] == 1 and comp["free_sites"] == comp["target_cells"]:
+            lone += 1
+            continue
+        shown = " ".join(f"({x},{y})" for x, y in comp["free_tags"])
+        more = comp["free_sites"] - len(comp["free_tags"])
+        lines.append(
+            f"group {k}: {comp['free_sites']} target sites free: {shown}"
+            + (f" and {more} more" if more > 0 else "")
+            + f"; {comp['searching']} robots searching"
+        )
+    if lone:
+        lines.append(f"{lone} robot(s) out of range of every other robot")
     return lines

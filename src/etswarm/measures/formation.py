@@ -44,6 +44,14 @@ def jaccard(tags: np.ndarray, holds: np.ndarray, target: np.ndarray) -> float:
     return 1.0 if not union else len(held & want) / len(union)
 
 
+def free_sites(tags: np.ndarray, holds: np.ndarray, target: np.ndarray) -> list[tuple[int, int]]:
+    """Target sites (tags) that no robot with ``holds`` set holds, sorted.
+
+    ``tags`` (N, 2) int, ``holds`` (N,) bool, ``target`` (M, 2) int."""
+    held = _tag_set(np.asarray(tags)[np.asarray(holds, dtype=bool)])
+    return sorted(_tag_set(target) - held)
+
+
 def placement_error_mm(
     pos: np.ndarray, tags: np.ndarray, holds: np.ndarray, spacing_mm: float
 ) -> float | None:
