@@ -40,7 +40,8 @@ C_LOST_BEACON = 24  # 1: a lost searcher follows a searcher that hears a station
 C_SETTLE_RETRIES = 25  # a settled searcher that cannot confirm its site stays this many times
 C_TICKS_HOLD = 26  # a Queued robot that hears a yielding searcher holds releases this long
 C_LOST_YIELD = 27  # 1: a lost searcher yields to lower-ID searchers as on the edge
-N_CI = 28
+C_REGROW_RETRIES = 28  # settle retries of a searcher working for a regenerated target
+N_CI = 29
 
 F_SPACING = 0  # lattice spacing d
 F_PAIR_TOL = 1  # two references within this of d trigger a site candidate
@@ -68,7 +69,7 @@ ORBIT_MODES = ("bounce", "clockwise")
 
 #: Parameters that may be zero (all others must be positive).
 NON_NEGATIVE: frozenset[str] = frozenset(
-    {"pair_aim_relax_s", "settle_retries", "release_hold_s"}
+    {"pair_aim_relax_s", "settle_retries", "regrowth_settle_retries", "release_hold_s"}
 )
 #: Parameters that may take any sign.
 SIGNED = frozenset({"pair_aim_mm", "follow_offset_mm"})
@@ -117,6 +118,12 @@ class ETParams:
     #: ... and when it still cannot confirm it, but the site is still near (the creep
     #: window), it stands for another ``settle_s`` with fresh readings, this many times.
     settle_retries: int = 0
+    #: ... and as many times while it searches for a regenerated target (after damage).
+    #: A remnant's lattice is the first formation's, often distorted, and its last sites
+    #: were lost to one noisy reading on confirming (traced on `H` split x=mid seed 1);
+    #: with one retry 81 of 126 middle-split runs re-formed against 72 of 130, while in
+    #: first formations one retry formed 208 of 260 against 214 (docs/algorithm.md).
+    regrowth_settle_retries: int = 1
     follow_offset_mm: float = 0.0
     closing_speed_mm_s: float = 5.0
     clearance_mm: float = 38.0
@@ -254,6 +261,7 @@ class ETParams:
         ci[C_LOST_YIELD] = 1 if self.lost_yield == "on" else 0
         ci[C_RELEASE_FAR] = 1 if self.release_order == "far" else 0
         ci[C_SETTLE_RETRIES] = self.settle_retries
+        ci[C_REGROW_RETRIES] = self.regrowth_settle_retries
         ci[C_TICKS_HOLD] = round(self.release_hold_s * ticks_per_s)
         cf = np.zeros(N_CF, dtype=np.float64)
         cf[F_SPACING] = self.spacing_mm

@@ -74,6 +74,7 @@ from etswarm.algorithm.params import (
     C_ORBIT_BOUNCE,
     C_POCKET,
     C_QUEUE_STRIDE,
+    C_REGROW_RETRIES,
     C_SECOND_RING,
     C_SETTLE_RETRIES,
     C_TICKS_COOLDOWN,
@@ -646,7 +647,8 @@ def search_rule(  # type: ignore[no-untyped-def]
             wide_min, held_i, ox, oy, pair_aim, cf[F_SETTLE_SCALE],
         )
         same = found and cx == ri[i, R_CAND_X] and cy == ri[i, R_CAND_Y]
-        if not same and ri[i, R_SETTLE_TRIES] < ci[C_SETTLE_RETRIES]:
+        retries = ci[C_SETTLE_RETRIES] if ri[i, R_EPOCH] == 0 else ci[C_REGROW_RETRIES]
+        if not same and ri[i, R_SETTLE_TRIES] < retries:
             # Noisy readings may have missed the window: stand on with fresh ones while
             # the candidate is still near.
             near, nx, ny, _ = find_site(
