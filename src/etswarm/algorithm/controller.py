@@ -102,6 +102,7 @@ from etswarm.algorithm.regeneration import (
 from etswarm.algorithm.release import queued_rule
 from etswarm.algorithm.search import search_rule
 from etswarm.algorithm.silent import encode_silent, ingest_silent, note_silent, sends_silent
+from etswarm.sim.borrow import borrowed
 
 #: Added to ``ingest``'s answer for a status message that changed its row (see there).
 CHANGED = 8
@@ -335,7 +336,31 @@ def et_part(  # type: ignore[no-untyped-def]
     and only ever to the same value, read after the threads meet. So parts may run at once
     on disjoint ranges, in any order, and give what one pass over all robots gives.
     """
-    stop, ri, nb, nb_dist, gene_flag, gene_nn, slot_info, ci, cf, walk_seen, held, idle = mem
+    # the arrays without reference counting (see etswarm.sim.borrow): this loop and the
+    # functions it calls per robot and message would otherwise count every array they
+    # pass on, atomically
+    stop = borrowed(mem[0])
+    ri = borrowed(mem[1])
+    nb = borrowed(mem[2])
+    nb_dist = borrowed(mem[3])
+    gene_flag = borrowed(mem[4])
+    gene_nn = borrowed(mem[5])
+    slot_info = borrowed(mem[6])
+    ci = borrowed(mem[7])
+    cf = borrowed(mem[8])
+    walk_seen = borrowed(mem[9])
+    held = borrowed(mem[10])
+    idle = borrowed(mem[11])
+    alive = borrowed(alive)
+    in_count = borrowed(in_count)
+    in_type = borrowed(in_type)
+    in_data = borrowed(in_data)
+    in_dist = borrowed(in_dist)
+    motor = borrowed(motor)
+    led = borrowed(led)
+    out_on = borrowed(out_on)
+    out_type = borrowed(out_type)
+    out_data = borrowed(out_data)
     every = ci[C_EVAL_EVERY]
     phase = (tick + lo) % every  # (tick + i) % every, kept without a division per robot
     for i in range(lo, hi):
