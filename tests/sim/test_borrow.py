@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import sys
+from typing import NamedTuple
 
 import numpy as np
 from numba import njit
@@ -41,3 +42,25 @@ def test_borrowed_reads_and_writes_the_array() -> None:
     assert last == 304
     assert not t[:, :, 0].any() and not t[:, :, 2].any()
     assert (sys.getrefcount(a), sys.getrefcount(t)) == refs  # nothing kept or leaked
+
+
+class _Pair(NamedTuple):
+    a: np.ndarray
+    k: int
+
+
+@njit
+def tuple_sums(pair, both):  # type: ignore[no-untyped-def]
+    """Borrow a named tuple (array and number) and a plain tuple of arrays, write, sum."""
+    p = borrowed(pair)
+    x, y = borrowed(both)
+    p.a[p.k] = 7.0
+    x[0] += y[1]
+    return p.a.sum(), x[0]
+
+
+def test_borrowed_tuples_keep_their_members() -> None:
+    pair = _Pair(np.zeros(4), 2)
+    both = (np.ones(3), np.arange(3.0))
+    assert tuple_sums(pair, both) == (7.0, 2.0)
+    assert pair.a[2] == 7.0 and both[0][0] == 2.0

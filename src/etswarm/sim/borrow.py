@@ -22,18 +22,37 @@ from numba.core import cgutils
 from numba.extending import intrinsic
 
 
-@intrinsic
-def borrowed(typingctx, a):
-    """``a`` (any array) with a null meminfo and parent: the same data, shape and strides,
-    no reference counting (see the module doc)."""
-    if not isinstance(a, types.Array):
-        return None
-
-    def codegen(context, builder, signature, args):
-        aryty = signature.args[0]
-        ary = cgutils.create_struct_proxy(aryty)(context, builder, value=args[0])
+def _strip(context, builder, typ, value):  # type: ignore[no-untyped-def]
+    """``value`` of type ``typ`` with every array in it (tuples recursively) borrowed."""
+    if isinstance(typ, types.Array):
+        ary = cgutils.create_struct_proxy(typ)(context, builder, value=value)
         ary.meminfo = cgutils.get_null_value(ary.meminfo.type)
         ary.parent = cgutils.get_null_value(ary.parent.type)
         return ary._getvalue()
+    if isinstance(typ, types.BaseTuple):
+        for k, member in enumerate(typ):
+            item = builder.extract_value(value, k)
+            value = builder.insert_value(value, _strip(context, builder, member, item), k)
+    return value
+
+
+def _borrowable(typ) -> bool:  # type: ignore[no-untyped-def]
+    """An array, a number or a boolean, or a tuple of such (nested): types whose values
+    hold no reference counted object but arrays."""
+    if isinstance(typ, types.BaseTuple):
+        return all(_borrowable(t) for t in typ)
+    return isinstance(typ, (types.Array, types.Number, types.Boolean))
+
+
+@intrinsic
+def borrowed(typingctx, a):
+    """``a`` (an array, or a tuple or named tuple of arrays and numbers) with a null
+    meminfo and parent in every array: the same data, shape and strides, no reference
+    counting (see the module doc)."""
+    if not _borrowable(a):
+        return None
+
+    def codegen(context, builder, signature, args):
+        return _strip(context, builder, signature.args[0], args[0])
 
     return a(a), codegen
