@@ -113,13 +113,16 @@ CHANGED = 8
 def table_slot(i, sender, nb):  # type: ignore[no-untyped-def]
     """Index of ``sender``'s row in robot i's neighbour table; a new robot takes a free
     row, else the one heard longest ago (returned negated minus one: -(row) - 1)."""
+    hit = -1
+    for m in range(nb.shape[1] - 1, -1, -1):
+        hit = m if nb[i, m, NB_ID] == sender else hit  # the first, found without a branch
+    if hit >= 0:
+        return hit
     free = -1
     oldest = -1
     oldest_tick = 1 << 62
     for m in range(nb.shape[1]):
         sid = nb[i, m, NB_ID]
-        if sid == sender:
-            return m
         if sid < 0:
             if free < 0:
                 free = m
