@@ -63,7 +63,7 @@ from etswarm.sim.parallel import (
     radio_file_part,
     radio_list_part,
 )
-from etswarm.sim.radio import radio_phase
+from etswarm.sim.radio import radio_phase, senders_by_phase
 from etswarm.sim.simulator import _NumbaThreads
 from etswarm.sim.sync import arrive, atomic_load, release
 
@@ -92,12 +92,14 @@ def _timed_ticks(n, tick0, cfg, grid, pos, heading, motor, led, alive, present, 
                  rng_ctl, mem, cycles):
     """The simulator's tick loop (see etswarm.sim.kernel) with ``cycles`` (4,) uint64
     accumulating the cycles of radio, control, move and collide."""
+    order, first = senders_by_phase(tx_phase, cfg.tx_period)
     n_dirty = grid_sync(grid, pos, present, dirty, dirty_flag, grid.state[2])
     for k in range(n):
         tick = tick0 + k
         t0 = _cycles()
         radio_phase(tick, cfg, grid, pos, alive, present, tx_phase, out_on, out_type,
-                    out_data, in_count, in_type, in_data, in_dist, counters, rng_radio)
+                    out_data, in_count, in_type, in_data, in_dist, counters, rng_radio,
+                    order, first)
         t1 = _cycles()
         randomwalk_step(tick, alive, in_count, in_type, in_data, in_dist, motor, led,
                         out_on, out_type, out_data, mem, rng_ctl)
@@ -311,12 +313,14 @@ def _timed_et_ticks(n, tick0, cfg, grid, pos, heading, motor, led, alive, presen
     """:func:`_timed_ticks` with the ET controller (``et_step``); returns the ticks run
     (fewer when a robot raised the stop flag)."""
     stop = mem[0]
+    order, first = senders_by_phase(tx_phase, cfg.tx_period)
     n_dirty = grid_sync(grid, pos, present, dirty, dirty_flag, grid.state[2])
     for k in range(n):
         tick = tick0 + k
         t0 = _cycles()
         radio_phase(tick, cfg, grid, pos, alive, present, tx_phase, out_on, out_type,
-                    out_data, in_count, in_type, in_data, in_dist, counters, rng_radio)
+                    out_data, in_count, in_type, in_data, in_dist, counters, rng_radio,
+                    order, first)
         t1 = _cycles()
         et_step(tick, alive, in_count, in_type, in_data, in_dist, motor, led,
                 out_on, out_type, out_data, mem, rng_ctl)

@@ -52,7 +52,7 @@ from etswarm.sim.borrow import borrowed
 from etswarm.sim.collide import collide_phase
 from etswarm.sim.motion import move_phase
 from etswarm.sim.neighbours import grid_sync
-from etswarm.sim.radio import radio_phase
+from etswarm.sim.radio import radio_phase, senders_by_phase
 
 # controller_step is bound by etswarm.sim.kernel before this body runs.
 
@@ -73,11 +73,13 @@ def run_ticks(n, tick0, cfg, grid, pos, heading, motor, led, alive, present, spe
     counters, dirty, dirty_flag, spare, trig = borrowed((counters, dirty, dirty_flag, spare,
                                                          trig))
     stop = mem[0]
+    order, first = senders_by_phase(tx_phase, cfg.tx_period)
     n_dirty = grid_sync(grid, pos, present, dirty, dirty_flag, grid.state[2])
     for k in range(n):
         tick = tick0 + k
         radio_phase(tick, cfg, grid, pos, alive, present, tx_phase, out_on, out_type,
-                    out_data, in_count, in_type, in_data, in_dist, counters, rng_radio)
+                    out_data, in_count, in_type, in_data, in_dist, counters, rng_radio,
+                    order, first)
         controller_step(tick, alive, in_count, in_type, in_data, in_dist, motor, led,
                         out_on, out_type, out_data, mem, rng_ctl)
         n_dirty = move_phase(cfg, grid, pos, heading, motor, alive, present, speed,
