@@ -120,7 +120,7 @@ def _timed_ticks(n, tick0, cfg, grid, pos, heading, motor, led, alive, present, 
 @njit
 def _timed_thread(p, n, tick0, cfg, grid, pos, heading, motor, led, alive, present, speed,
                   turn_rate, tx_phase, out_on, out_type, out_data, in_count, in_type, in_data,
-                  in_dist, counters, flags, trig, rng_ctl, mem, scr, cycles):
+                  in_dist, counters, flags, trig, rng_ctl, mem, scr, cycles, order, first):
     """Thread ``p`` of the threaded loop (the template in etswarm.sim.kernel, phase for
     phase), ``cycles[p]`` (6,) counting the cycles of MT_PHASES. The last thread to
     arrive at a barrier does the one-thread work ("upkeep"; the controller counts as
@@ -135,13 +135,14 @@ def _timed_thread(p, n, tick0, cfg, grid, pos, heading, motor, led, alive, prese
         tick = tick0 + k
         t0 = _cycles()
         radio_list_part(p, tick, cfg, grid, pos, alive, present, tx_phase, out_on, out_type,
-                        out_data, scr)
+                        out_data, scr, order, first)
         t1 = _cycles()
         if arrive(sync, parts):
             release(sync)
         t2 = _cycles()
         radio_file_part(p, tick, cfg, grid, pos, alive, present, tx_phase, out_on, out_type,
-                        out_data, in_count, in_type, in_data, in_dist, counters, scr)
+                        out_data, in_count, in_type, in_data, in_dist, counters, scr, order,
+                        first)
         t3 = _cycles()
         bad = radio_bad(scr)
         if not bad:
@@ -215,11 +216,12 @@ def _timed_threaded(n, tick0, cfg, grid, pos, heading, motor, led, alive, presen
                     in_data, in_dist, counters, flags, trig, rng_ctl, mem, scr, cycles):
     grid_sync_flags(grid, pos, present, flags, scr.robot_flag)
     scr.cstate[CS_DONE] = 0
+    order, first = senders_by_phase(tx_phase, cfg.tx_period)
     for p in prange(scr.parts[0]):
         _timed_thread(p, n, tick0, cfg, grid, pos, heading, motor, led, alive, present,
                       speed, turn_rate, tx_phase, out_on, out_type, out_data, in_count,
                       in_type, in_data, in_dist, counters, flags, trig, rng_ctl, mem, scr,
-                      cycles)
+                      cycles, order, first)
     return n
 
 

@@ -101,6 +101,7 @@ from etswarm.sim.parallel import (
     move_part, part_bounds, prebuild_lists, radio_bad, radio_count, radio_file_part,
     radio_list_part,
 )
+from etswarm.sim.radio import senders_by_phase
 from etswarm.sim.sync import arrive, atomic_load, release
 
 # controller_part and controller_rest are bound by etswarm.sim.kernel before this body
@@ -110,7 +111,7 @@ from etswarm.sim.sync import arrive, atomic_load, release
 @njit(cache={cache})
 def thread_ticks(p, n, tick0, cfg, grid, pos, heading, motor, led, alive, present, speed,
                  turn_rate, tx_phase, out_on, out_type, out_data, in_count, in_type, in_data,
-                 in_dist, counters, flags, trig, rng_ctl, mem, scratch):
+                 in_dist, counters, flags, trig, rng_ctl, mem, scratch, order, first):
     # the phases' arrays without reference counting (etswarm.sim.borrow): both threads
     # would otherwise update the same counters at every call
     grid, mem, scratch = borrowed(grid), borrowed(mem), borrowed(scratch)
@@ -118,7 +119,7 @@ def thread_ticks(p, n, tick0, cfg, grid, pos, heading, motor, led, alive, presen
     alive, present, speed, turn_rate = borrowed((alive, present, speed, turn_rate))
     tx_phase, out_on, out_type, out_data = borrowed((tx_phase, out_on, out_type, out_data))
     in_count, in_type, in_data, in_dist = borrowed((in_count, in_type, in_data, in_dist))
-    counters, flags, trig = borrowed((counters, flags, trig))
+    counters, flags, trig, order, first = borrowed((counters, flags, trig, order, first))
     # the last thread to reach a barrier does the one-thread work, then releases the rest
     parts = scratch.parts[0]
     sync = scratch.sync
@@ -127,11 +128,12 @@ def thread_ticks(p, n, tick0, cfg, grid, pos, heading, motor, led, alive, presen
     for k in range(n):
         tick = tick0 + k
         radio_list_part(p, tick, cfg, grid, pos, alive, present, tx_phase, out_on, out_type,
-                        out_data, scratch)
+                        out_data, scratch, order, first)
         if arrive(sync, parts):
             release(sync)
         radio_file_part(p, tick, cfg, grid, pos, alive, present, tx_phase, out_on, out_type,
-                        out_data, in_count, in_type, in_data, in_dist, counters, scratch)
+                        out_data, in_count, in_type, in_data, in_dist, counters, scratch,
+                        order, first)
         # the controller's per-robot work on the robots whose inboxes this thread filed
         bad = radio_bad(scratch)  # then part 0 filed every inbox: parts wait (below)
         if not bad:
@@ -180,10 +182,12 @@ def run_ticks(n, tick0, cfg, grid, pos, heading, motor, led, alive, present, spe
         return 0
     grid_sync_flags(grid, pos, present, flags, scratch.robot_flag)
     scratch.cstate[CS_DONE] = 0
+    order, first = senders_by_phase(tx_phase, cfg.tx_period)
     for p in prange(scratch.parts[0]):
         thread_ticks(p, n, tick0, cfg, grid, pos, heading, motor, led, alive, present, speed,
                      turn_rate, tx_phase, out_on, out_type, out_data, in_count, in_type,
-                     in_data, in_dist, counters, flags, trig, rng_ctl, mem, scratch)
+                     in_data, in_dist, counters, flags, trig, rng_ctl, mem, scratch, order,
+                     first)
     return scratch.cstate[CS_DONE]
 '''
 
