@@ -63,7 +63,7 @@ from etswarm.sim.parallel import (
     radio_file_part,
     radio_list_part,
 )
-from etswarm.sim.radio import radio_phase
+from etswarm.sim.radio import radio_phase, senders_by_phase
 from etswarm.sim.simulator import _NumbaThreads
 from etswarm.sim.sync import arrive, atomic_load, release
 
@@ -92,12 +92,14 @@ def _timed_ticks(n, tick0, cfg, grid, pos, heading, motor, led, alive, present, 
                  rng_ctl, mem, cycles):
     """The simulator's tick loop (see etswarm.sim.kernel) with ``cycles`` (4,) uint64
     accumulating the cycles of radio, control, move and collide."""
+    order, first = senders_by_phase(tx_phase, cfg.tx_period)
     n_dirty = grid_sync(grid, pos, present, dirty, dirty_flag, grid.state[2])
     for k in range(n):
         tick = tick0 + k
         t0 = _cycles()
         radio_phase(tick, cfg, grid, pos, alive, present, tx_phase, out_on, out_type,
-                    out_data, in_count, in_type, in_data, in_dist, counters, rng_radio)
+                    out_data, in_count, in_type, in_data, in_dist, counters, rng_radio,
+                    order, first)
         t1 = _cycles()
         randomwalk_step(tick, alive, in_count, in_type, in_data, in_dist, motor, led,
                         out_on, out_type, out_data, mem, rng_ctl)
@@ -118,7 +120,7 @@ def _timed_ticks(n, tick0, cfg, grid, pos, heading, motor, led, alive, present, 
 @njit
 def _timed_thread(p, n, tick0, cfg, grid, pos, heading, motor, led, alive, present, speed,
                   turn_rate, tx_phase, out_on, out_type, out_data, in_count, in_type, in_data,
-                  in_dist, counters, flags, trig, rng_ctl, mem, scr, cycles):
+                  in_dist, counters, flags, trig, rng_ctl, mem, scr, cycles, order, first):
     """Thread ``p`` of the threaded loop (the template in etswarm.sim.kernel, phase for
     phase), ``cycles[p]`` (6,) counting the cycles of MT_PHASES. The last thread to
     arrive at a barrier does the one-thread work ("upkeep"; the controller counts as
@@ -133,13 +135,14 @@ def _timed_thread(p, n, tick0, cfg, grid, pos, heading, motor, led, alive, prese
         tick = tick0 + k
         t0 = _cycles()
         radio_list_part(p, tick, cfg, grid, pos, alive, present, tx_phase, out_on, out_type,
-                        out_data, scr)
+                        out_data, scr, order, first)
         t1 = _cycles()
         if arrive(sync, parts):
             release(sync)
         t2 = _cycles()
         radio_file_part(p, tick, cfg, grid, pos, alive, present, tx_phase, out_on, out_type,
-                        out_data, in_count, in_type, in_data, in_dist, counters, scr)
+                        out_data, in_count, in_type, in_data, in_dist, counters, scr, order,
+                        first)
         t3 = _cycles()
         bad = radio_bad(scr)
         if not bad:
@@ -213,11 +216,12 @@ def _timed_threaded(n, tick0, cfg, grid, pos, heading, motor, led, alive, presen
                     in_data, in_dist, counters, flags, trig, rng_ctl, mem, scr, cycles):
     grid_sync_flags(grid, pos, present, flags, scr.robot_flag)
     scr.cstate[CS_DONE] = 0
+    order, first = senders_by_phase(tx_phase, cfg.tx_period)
     for p in prange(scr.parts[0]):
         _timed_thread(p, n, tick0, cfg, grid, pos, heading, motor, led, alive, present,
                       speed, turn_rate, tx_phase, out_on, out_type, out_data, in_count,
                       in_type, in_data, in_dist, counters, flags, trig, rng_ctl, mem, scr,
-                      cycles)
+                      cycles, order, first)
     return n
 
 
@@ -311,12 +315,14 @@ def _timed_et_ticks(n, tick0, cfg, grid, pos, heading, motor, led, alive, presen
     """:func:`_timed_ticks` with the ET controller (``et_step``); returns the ticks run
     (fewer when a robot raised the stop flag)."""
     stop = mem[0]
+    order, first = senders_by_phase(tx_phase, cfg.tx_period)
     n_dirty = grid_sync(grid, pos, present, dirty, dirty_flag, grid.state[2])
     for k in range(n):
         tick = tick0 + k
         t0 = _cycles()
         radio_phase(tick, cfg, grid, pos, alive, present, tx_phase, out_on, out_type,
-                    out_data, in_count, in_type, in_data, in_dist, counters, rng_radio)
+                    out_data, in_count, in_type, in_data, in_dist, counters, rng_radio,
+                    order, first)
         t1 = _cycles()
         et_step(tick, alive, in_count, in_type, in_data, in_dist, motor, led,
                 out_on, out_type, out_data, mem, rng_ctl)

@@ -14,6 +14,7 @@ so stationary robots cost a few operations per tick.
 
 from __future__ import annotations
 
+import numpy as np
 from numba import njit
 
 from etswarm.algorithm.census_walk import sends_tag, walk_rule, walking
@@ -102,6 +103,7 @@ from etswarm.algorithm.regeneration import (
 from etswarm.algorithm.release import queued_rule
 from etswarm.algorithm.search import search_rule
 from etswarm.algorithm.silent import encode_silent, ingest_silent, note_silent, sends_silent
+from etswarm.sim.borrow import borrowed
 
 #: Added to ``ingest``'s answer for a status message that changed its row (see there).
 CHANGED = 8
@@ -111,13 +113,16 @@ CHANGED = 8
 def table_slot(i, sender, nb):  # type: ignore[no-untyped-def]
     """Index of ``sender``'s row in robot i's neighbour table; a new robot takes a free
     row, else the one heard longest ago (returned negated minus one: -(row) - 1)."""
+    hit = -1
+    for m in range(nb.shape[1] - 1, -1, -1):
+        hit = m if nb[i, m, NB_ID] == sender else hit  # the first, found without a branch
+    if hit >= 0:
+        return hit
     free = -1
     oldest = -1
     oldest_tick = 1 << 62
     for m in range(nb.shape[1]):
         sid = nb[i, m, NB_ID]
-        if sid == sender:
-            return m
         if sid < 0:
             if free < 0:
                 free = m
@@ -157,8 +162,8 @@ def ingest(i, k, tick, ri, in_type, in_data, in_dist, nb, nb_dist):  # type: ign
     came from or left the robot's target epoch. A target announcement is kept in R_PEND_*
     when it is newer than the one kept.
     """
-    kind = int(in_type[i, k]) & KIND_MASK
-    sender = int(in_data[i, k, 0]) | (int(in_data[i, k, 1]) << 8)
+    kind = np.int64(in_type[i, k]) & KIND_MASK
+    sender = np.int64(in_data[i, k, 0]) | (np.int64(in_data[i, k, 1]) << 8)
     slot = table_slot(i, sender, nb)
     created = slot < 0
     if created:
@@ -166,36 +171,36 @@ def ingest(i, k, tick, ri, in_type, in_data, in_dist, nb, nb_dist):  # type: ign
     nb[i, slot, NB_LAST] = tick
     nb_dist[i, slot] = in_dist[i, k]
     if kind == MSG_ELECT:
-        wrapped = int(in_type[i, k]) >> EPOCH_SHIFT
+        wrapped = np.int64(in_type[i, k]) >> EPOCH_SHIFT
         nb[i, slot, NB_EEPOCH] = near_epoch(ri[i, R_EPOCH] + 1, wrapped, 32)
-        nb[i, slot, NB_ELEADER] = int(in_data[i, k, 2]) | (int(in_data[i, k, 3]) << 8)
-        nb[i, slot, NB_EHOP] = int(in_data[i, k, 4])
-        parent = int(in_data[i, k, 5]) | (int(in_data[i, k, 6]) << 8)
+        nb[i, slot, NB_ELEADER] = np.int64(in_data[i, k, 2]) | (np.int64(in_data[i, k, 3]) << 8)
+        nb[i, slot, NB_EHOP] = np.int64(in_data[i, k, 4])
+        parent = np.int64(in_data[i, k, 5]) | (np.int64(in_data[i, k, 6]) << 8)
         nb[i, slot, NB_EPARENT] = -1 if parent == 0xFFFF else parent
-        nb[i, slot, NB_ESUB] = int(in_data[i, k, 7]) | (int(in_data[i, k, 8]) << 8)
+        nb[i, slot, NB_ESUB] = np.int64(in_data[i, k, 7]) | (np.int64(in_data[i, k, 8]) << 8)
         nb[i, slot, NB_ELAST] = tick
         if nb[i, slot, NB_EEPOCH] <= ri[i, R_EPOCH] and ri[i, R_EPOCH] > 0:
             # It still elects for a target this robot has adopted: relay the announcement.
             ri[i, R_ADOPTED_AT] = tick
         return kind
     if kind == MSG_SILENT:
-        wrapped = int(in_type[i, k]) >> EPOCH_SHIFT
+        wrapped = np.int64(in_type[i, k]) >> EPOCH_SHIFT
         ingest_silent(i, k, tick, ri, in_data, near_epoch(ri[i, R_EPOCH] + 1, wrapped, 32))
         return kind
     if kind == MSG_TARGET:
-        epoch = near_epoch(ri[i, R_EPOCH] + 1, int(in_data[i, k, 2]), 256)
+        epoch = near_epoch(ri[i, R_EPOCH] + 1, np.int64(in_data[i, k, 2]), 256)
         if epoch > ri[i, R_PEND_EPOCH]:
             ri[i, R_PEND_EPOCH] = epoch
-            ri[i, R_PEND_N] = int(in_data[i, k, 3]) | (int(in_data[i, k, 4]) << 8)
-            tx = int(in_data[i, k, 5])
-            ty = int(in_data[i, k, 6])
+            ri[i, R_PEND_N] = np.int64(in_data[i, k, 3]) | (np.int64(in_data[i, k, 4]) << 8)
+            tx = np.int64(in_data[i, k, 5])
+            ty = np.int64(in_data[i, k, 6])
             ri[i, R_PEND_TX] = tx - 256 if tx >= 128 else tx
             ri[i, R_PEND_TY] = ty - 256 if ty >= 128 else ty
         return kind
-    state = int(in_data[i, k, 2]) & 0x0F
+    state = np.int64(in_data[i, k, 2]) & 0x0F
     own = ri[i, R_EPOCH]
     changed = created or nb[i, slot, NB_EPOCH] != own or nb[i, slot, NB_STATE] != state
-    nb[i, slot, NB_EPOCH] = near_epoch(own, int(in_type[i, k]) >> EPOCH_SHIFT, 32)
+    nb[i, slot, NB_EPOCH] = near_epoch(own, np.int64(in_type[i, k]) >> EPOCH_SHIFT, 32)
     if nb[i, slot, NB_EPOCH] != own:
         changed = True
         if nb[i, slot, NB_EPOCH] < own:
@@ -204,16 +209,16 @@ def ingest(i, k, tick, ri, in_type, in_data, in_dist, nb, nb_dist):  # type: ign
         nb[i, slot, NB_PREV] = nb[i, slot, NB_STATE]
     nb[i, slot, NB_STATE] = state
     if state >= INACTIVE:
-        tx = int(in_data[i, k, 3])
-        ty = int(in_data[i, k, 4])
+        tx = np.int64(in_data[i, k, 3])
+        ty = np.int64(in_data[i, k, 4])
         nb[i, slot, NB_TX] = tx - 256 if tx >= 128 else tx
         nb[i, slot, NB_TY] = ty - 256 if ty >= 128 else ty
-        nb[i, slot, NB_TS] = int(in_data[i, k, 5]) | (int(in_data[i, k, 6]) << 8)
-        nb[i, slot, NB_MASK] = int(in_data[i, k, 7])
+        nb[i, slot, NB_TS] = np.int64(in_data[i, k, 5]) | (np.int64(in_data[i, k, 6]) << 8)
+        nb[i, slot, NB_MASK] = np.int64(in_data[i, k, 7])
     else:
-        nb[i, slot, NB_RELEASED] = int(in_data[i, k, 7]) | (int(in_data[i, k, 8]) << 8)
-        nb[i, slot, NB_HOPS] = int(in_data[i, k, 5])
-        nb[i, slot, NB_ANCHORED] = int(in_data[i, k, 6])
+        nb[i, slot, NB_RELEASED] = np.int64(in_data[i, k, 7]) | (np.int64(in_data[i, k, 8]) << 8)
+        nb[i, slot, NB_HOPS] = np.int64(in_data[i, k, 5])
+        nb[i, slot, NB_ANCHORED] = np.int64(in_data[i, k, 6])
     return kind + CHANGED if changed else kind
 
 
@@ -231,17 +236,17 @@ def idle_wake(i, k, tick, wake, ri, in_data, ci):  # type: ignore[no-untyped-def
     """
     if ri[i, R_STATE] != QUEUED:
         return wake
-    state = int(in_data[i, k, 2]) & 0x0F
+    state = np.int64(in_data[i, k, 2]) & 0x0F
     if state > SEARCH:
         return wake
-    if (int(in_data[i, k, 7]) | (int(in_data[i, k, 8]) << 8)) > ri[i, R_RELEASED]:
+    if (np.int64(in_data[i, k, 7]) | (np.int64(in_data[i, k, 8]) << 8)) > ri[i, R_RELEASED]:
         return 0
     qmin = ri[i, R_QMIN]
     if state == SEARCH:
         if qmin == i:
             return max(wake, tick + ci[C_TICKS_CLEAR])
         return wake
-    sender = int(in_data[i, k, 0]) | (int(in_data[i, k, 1]) << 8)
+    sender = np.int64(in_data[i, k, 0]) | (np.int64(in_data[i, k, 1]) << 8)
     if sender < qmin:
         return 0
     if sender == qmin:
@@ -335,7 +340,31 @@ def et_part(  # type: ignore[no-untyped-def]
     and only ever to the same value, read after the threads meet. So parts may run at once
     on disjoint ranges, in any order, and give what one pass over all robots gives.
     """
-    stop, ri, nb, nb_dist, gene_flag, gene_nn, slot_info, ci, cf, walk_seen, held, idle = mem
+    # the arrays without reference counting (see etswarm.sim.borrow): this loop and the
+    # functions it calls per robot and message would otherwise count every array they
+    # pass on, atomically
+    stop = borrowed(mem[0])
+    ri = borrowed(mem[1])
+    nb = borrowed(mem[2])
+    nb_dist = borrowed(mem[3])
+    gene_flag = borrowed(mem[4])
+    gene_nn = borrowed(mem[5])
+    slot_info = borrowed(mem[6])
+    ci = borrowed(mem[7])
+    cf = borrowed(mem[8])
+    walk_seen = borrowed(mem[9])
+    held = borrowed(mem[10])
+    idle = borrowed(mem[11])
+    alive = borrowed(alive)
+    in_count = borrowed(in_count)
+    in_type = borrowed(in_type)
+    in_data = borrowed(in_data)
+    in_dist = borrowed(in_dist)
+    motor = borrowed(motor)
+    led = borrowed(led)
+    out_on = borrowed(out_on)
+    out_type = borrowed(out_type)
+    out_data = borrowed(out_data)
     every = ci[C_EVAL_EVERY]
     phase = (tick + lo) % every  # (tick + i) % every, kept without a division per robot
     for i in range(lo, hi):
@@ -355,13 +384,13 @@ def et_part(  # type: ignore[no-untyped-def]
             kind = ingest(i, k, tick, ri, in_type, in_data, in_dist, nb, nb_dist)
             if kind == MSG_STATUS:
                 new_msgs = True
-                if int(in_data[i, k, 2]) & 0x0F == LEADER:
+                if np.int64(in_data[i, k, 2]) & 0x0F == LEADER:
                     ri[i, R_WALK_SEEN] = tick  # a census walker: send it our tag
                 if wake > 0:
                     wake = idle_wake(i, k, tick, wake, ri, in_data, ci)
             elif kind == MSG_STATUS + CHANGED:
                 new_msgs = True
-                if int(in_data[i, k, 2]) & 0x0F == LEADER:
+                if np.int64(in_data[i, k, 2]) & 0x0F == LEADER:
                     ri[i, R_WALK_SEEN] = tick
                 wake = 0
             else:

@@ -24,6 +24,7 @@ keeps the scaled target on the side where the remnant stands.
 
 from __future__ import annotations
 
+import numpy as np
 from numba import njit
 
 from etswarm.algorithm.kernel_util import direction_index, is_placed
@@ -147,7 +148,7 @@ def ingest_silent(i, k, tick, ri, in_data, elected_epoch):  # type: ignore[no-un
     ``elected_epoch``, if robot i elects for that epoch too."""
     if elected_epoch != ri[i, R_EPOCH] + 1:
         return
-    n_tags = min(int(in_data[i, k, 2]), TAGS_PER_MESSAGE)
+    n_tags = min(np.int64(in_data[i, k, 2]), TAGS_PER_MESSAGE)
     for t in range(n_tags):
         x = get_i8(in_data[i, k], 3 + 2 * t)
         y = get_i8(in_data[i, k], 4 + 2 * t)

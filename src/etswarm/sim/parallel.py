@@ -96,6 +96,7 @@ from etswarm.sim.neighbours import (
     new_epoch,
 )
 from etswarm.sim.prefetch import prefetch
+from etswarm.sim.radio import senders_by_phase
 from etswarm.sim.sync import atomic_add, atomic_load, atomic_store, wait_for
 from etswarm.sim.world import PAYLOAD_BYTES
 
@@ -348,10 +349,10 @@ def _part_of(j, n, parts):
 
 @njit(cache=True)
 def _radio_one_thread(tick, cfg, grid, pos, alive, present, tx_phase, out_on, out_type,
-                      out_data, in_count, in_type, in_data, in_dist, counters, scr):
+                      out_data, in_count, in_type, in_data, in_dist, counters, scr, order,
+                      first):
     """The threaded radio's result computed on one thread without the streams' capacity
     (used when a stream would overflow)."""
-    n = pos.shape[0]
     cap = in_type.shape[1]
     key = scr.key[0]
     phase = tick % cfg.tx_period
@@ -370,7 +371,8 @@ def _radio_one_thread(tick, cfg, grid, pos, alive, present, tx_phase, out_on, ou
     delivered = 0
     lost = 0
     overflow = 0
-    for i in range(n):
+    for q_send in range(first[phase], first[phase + 1]):
+        i = order[q_send]
         if not _is_sender(i, phase, tx_phase, out_on, alive, present):
             continue
         sent += 1
@@ -402,10 +404,11 @@ def _radio_one_thread(tick, cfg, grid, pos, alive, present, tx_phase, out_on, ou
 
 @njit(cache=True)
 def _radio_list(slo, shi, p, tick, cfg, grid, alive, present, tx_phase, out_on, out_type,
-                out_data, scr):
+                out_data, scr, order, first):
     """Pass 1 for the senders filed in slots slo..shi-1, in index order: copy each
     message and append every copy that is not lost, as (sender, receiver, distance),
-    to the stream of the part the receiver belongs to."""
+    to the stream of the part the receiver belongs to. ``order``, ``first``: the robots
+    grouped by phase (``radio.senders_by_phase``), so only this tick's are looked at."""
     n = alive.shape[0]
     parts = scr.parts[0]
     phase = tick % cfg.tx_period
@@ -434,7 +437,8 @@ def _radio_list(slo, shi, p, tick, cfg, grid, alive, present, tx_phase, out_on, 
     sent = 0
     lost = 0
     bad = 0
-    for i in range(n):
+    for q_send in range(first[phase], first[phase + 1]):
+        i = order[q_send]
         s = slot[i]
         if s < slo or s >= shi or not _is_sender(i, phase, tx_phase, out_on, alive, present):
             continue
@@ -537,7 +541,8 @@ def radio_bad(scr):
 
 @njit(cache=True)
 def radio_file_part(p, tick, cfg, grid, pos, alive, present, tx_phase, out_on, out_type,
-                    out_data, in_count, in_type, in_data, in_dist, counters, scr):
+                    out_data, in_count, in_type, in_data, in_dist, counters, scr, order,
+                    first):
     """Pass 2 of part ``p`` (receivers n p / T .. n (p + 1) / T - 1) after every part's
     pass 1; if a stream overflowed, part 0 runs the whole tick's radio on its own
     instead (and counts it)."""
@@ -547,7 +552,7 @@ def radio_file_part(p, tick, cfg, grid, pos, alive, present, tx_phase, out_on, o
         if p == 0:
             _radio_one_thread(tick, cfg, grid, pos, alive, present, tx_phase, out_on,
                               out_type, out_data, in_count, in_type, in_data, in_dist,
-                              counters, scr)
+                              counters, scr, order, first)
         return
     _radio_file(n * p // parts, n * (p + 1) // parts, p, in_count, in_type, in_data,
                 in_dist, scr)
@@ -568,13 +573,14 @@ def radio_count(counters, scr):
 
 @njit(cache=True)
 def radio_list_part(p, tick, cfg, grid, pos, alive, present, tx_phase, out_on, out_type,
-                    out_data, scr):
+                    out_data, scr, order, first):
     """Pass 1 of part ``p``: the senders filed in slots n p / T .. n (p + 1) / T - 1 of
-    the n filed robots (by place, as :func:`move_part`)."""
+    the n filed robots (by place, as :func:`move_part`); ``order``, ``first``:
+    ``radio.senders_by_phase`` of ``tx_phase``."""
     n_filed = grid.start[grid.dims[0] * grid.dims[1]]
     parts = scr.parts[0]
     _radio_list(n_filed * p // parts, n_filed * (p + 1) // parts, p, tick, cfg, grid,
-                alive, present, tx_phase, out_on, out_type, out_data, scr)
+                alive, present, tx_phase, out_on, out_type, out_data, scr, order, first)
 
 
 @njit(cache=True)
@@ -583,12 +589,14 @@ def radio_phase_mt(tick, cfg, grid, pos, alive, present, tx_phase, out_on, out_t
     """The threaded radio phase run part after part on the calling thread (arrays as in
     World; see module doc): what the threaded loop's threads do, in one call."""
     parts = scr.parts[0]
+    order, first = senders_by_phase(tx_phase, cfg.tx_period)
     for p in range(parts):
         radio_list_part(p, tick, cfg, grid, pos, alive, present, tx_phase, out_on, out_type,
-                        out_data, scr)
+                        out_data, scr, order, first)
     for q in range(parts):
         radio_file_part(q, tick, cfg, grid, pos, alive, present, tx_phase, out_on, out_type,
-                        out_data, in_count, in_type, in_data, in_dist, counters, scr)
+                        out_data, in_count, in_type, in_data, in_dist, counters, scr, order,
+                        first)
     radio_count(counters, scr)
 
 

@@ -21,9 +21,32 @@ from etswarm.sim.world import PAYLOAD_BYTES
 
 
 @njit(cache=True)
+def senders_by_phase(tx_phase, tx_period):
+    """The robots grouped by broadcast phase: robots ``order[first[s]:first[s + 1]]``, in
+    index order, have ``tx_phase`` s (``order`` (N,) int64, ``first`` (tx_period + 1,)
+    int64; a robot whose phase is outside [0, tx_period) is in no group)."""
+    n = tx_phase.shape[0]
+    first = np.zeros(tx_period + 1, dtype=np.int64)
+    for i in range(n):
+        if 0 <= tx_phase[i] < tx_period:
+            first[tx_phase[i] + 1] += 1
+    for s in range(tx_period):
+        first[s + 1] += first[s]
+    order = np.empty(n, dtype=np.int64)
+    at = first[:tx_period].copy()
+    for i in range(n):
+        if 0 <= tx_phase[i] < tx_period:
+            order[at[tx_phase[i]]] = i
+            at[tx_phase[i]] += 1
+    return order, first
+
+
+@njit(cache=True)
 def radio_phase(tick, cfg, grid, pos, alive, present, tx_phase, out_on, out_type, out_data,
-                in_count, in_type, in_data, in_dist, counters, rng):
-    """Clear the inboxes and deliver this tick's broadcasts (arrays as in World)."""
+                in_count, in_type, in_data, in_dist, counters, rng, order, first):
+    """Clear the inboxes and deliver this tick's broadcasts (arrays as in World; ``order``
+    and ``first``: :func:`senders_by_phase` of ``tx_phase``, so that only this tick's
+    senders are visited)."""
     n = pos.shape[0]
     cap = in_type.shape[1]
     in_count[:] = 0
@@ -47,8 +70,9 @@ def radio_phase(tick, cfg, grid, pos, alive, present, tx_phase, out_on, out_type
     delivered = 0
     lost = 0
     overflow = 0
-    for i in range(n):
-        if tx_phase[i] != slot or not out_on[i] or not alive[i] or not present[i]:
+    for q_send in range(first[slot], first[slot + 1]):
+        i = order[q_send]
+        if not out_on[i] or not alive[i] or not present[i]:
             continue
         sent += 1
         x = pos[i, 0]

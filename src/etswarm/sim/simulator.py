@@ -48,7 +48,7 @@ from etswarm.sim.parallel import (
     radio_phase_mt,
 )
 from etswarm.sim.params import SimParams
-from etswarm.sim.radio import radio_phase
+from etswarm.sim.radio import radio_phase, senders_by_phase
 from etswarm.sim.world import World
 
 #: Contact-list drift (mm): see etswarm.sim.neighbours. Results do not depend on it; 2 mm
@@ -235,9 +235,10 @@ class Simulator:
             w.tick += 1
             return
         n_dirty = grid_sync(g, w.pos, w.present, self._dirty, self._dirty_flag, g.state[2])
+        order, first = senders_by_phase(w.tx_phase, self.cfg.tx_period)
         radio_phase(w.tick, self.cfg, g, w.pos, w.alive, w.present, w.tx_phase, w.out_on,
                     w.out_type, w.out_data, w.in_count, w.in_type, w.in_data, w.in_dist,
-                    w.counters, self.rng_radio)
+                    w.counters, self.rng_radio, order, first)
         self.controller.step(self._view())
         n_dirty = move_phase(self.cfg, g, w.pos, w.heading, w.motor, w.alive, w.present,
                              w.speed, w.turn_rate, self._dirty, self._dirty_flag, n_dirty,
