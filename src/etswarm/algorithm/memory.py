@@ -125,7 +125,12 @@ RECENT_REFS = 4
 R_NEW_REF_MOVED = R_RECENT0 + RECENT_REFS  # ticks moved since a reference not among them
 R_SETTLE_TRIES = R_NEW_REF_MOVED + 1  # settle periods a searcher has stood on its candidate
 R_HOLD_UNTIL = R_SETTLE_TRIES + 1  # a Queued robot releases no robot before this tick
-R_FIELDS = R_HOLD_UNTIL + 1
+# Hovering (option ``regrowth_hover_s``): the free site a creeping searcher keeps finding
+# near it with the creep window, and since when (1 + tick; 0: none).
+R_HOVER_X = R_HOLD_UNTIL + 1
+R_HOVER_Y = R_HOVER_X + 1
+R_HOVER_SINCE = R_HOVER_Y + 1
+R_FIELDS = R_HOVER_SINCE + 1
 
 PHASE_NORMAL = 0
 PHASE_ELECTING = 1

@@ -40,6 +40,9 @@ from etswarm.algorithm.memory import (
     R_EPOCH,
     R_FROM_ID,
     R_HAS_TAG,
+    R_HOVER_SINCE,
+    R_HOVER_X,
+    R_HOVER_Y,
     R_LOST_SINCE,
     R_MASK,
     R_NEW_REF_MOVED,
@@ -78,6 +81,7 @@ from etswarm.algorithm.params import (
     C_SECOND_RING,
     C_SETTLE_RETRIES,
     C_TICKS_COOLDOWN,
+    C_TICKS_HOVER,
     C_TICKS_MOVE_FRESH,
     C_TICKS_NB_FRESH,
     C_TICKS_SETTLE,
@@ -532,6 +536,29 @@ def find_site(  # type: ignore[no-untyped-def]
     return best_err < FAR, best_x, best_y, best_ts
 
 
+@njit(inline="always")
+def note_hover(i, tick, x, y, ri):  # type: ignore[no-untyped-def]
+    """Creeping robot i found site (x, y) near it: it hovers there since the first time
+    in a row it found that site."""
+    if ri[i, R_HOVER_SINCE] == 0 or ri[i, R_HOVER_X] != x or ri[i, R_HOVER_Y] != y:
+        ri[i, R_HOVER_X] = x
+        ri[i, R_HOVER_Y] = y
+        ri[i, R_HOVER_SINCE] = tick + 1
+
+
+@njit(inline="always")
+def hovering(i, tick, ri, ci):  # type: ignore[no-untyped-def]
+    """Robot i, searching for a regenerated target, has crept near one free site for
+    ``regrowth_hover_s`` (``note_hover``). Hovering ends when its creep mode runs out while
+    it moves on."""
+    if ci[C_TICKS_HOVER] <= 0 or ri[i, R_EPOCH] == 0 or ri[i, R_HOVER_SINCE] == 0:
+        return False
+    if ri[i, R_SUB] == SUB_FOLLOW and tick >= ri[i, R_CREEP_UNTIL]:
+        ri[i, R_HOVER_SINCE] = 0
+        return False
+    return tick - (ri[i, R_HOVER_SINCE] - 1) >= ci[C_TICKS_HOVER]
+
+
 @njit
 def search_rule(  # type: ignore[no-untyped-def]
     i, tick, new_msgs, ri, nb, nb_dist, motor, gene_flag, gene_nn, ci, cf, held, ox, oy
@@ -633,6 +660,8 @@ def search_rule(  # type: ignore[no-untyped-def]
         # Long at the shape, it may also take a site from the robots round it (``pocket``).
         pocket = ci[C_POCKET] == 1 and at_shape >= POCKET_AFTER_TICKS
     pair_aim = window_centre(cf, at_shape)
+    if hovering(i, tick, ri, ci):
+        pair_aim = d  # long near one site: its pair may stand too far apart for the window
     if ri[i, R_SUB] == SUB_SETTLE:
         motor[i] = STOP
         if tick - ri[i, R_SUB_SINCE] < ci[C_TICKS_SETTLE]:
@@ -731,12 +760,14 @@ def search_rule(  # type: ignore[no-untyped-def]
             return
         if ci[C_CREEP] == 1:
             recent = tick - steer_fresh
-            near, _, _, _ = find_site(
+            near, nx, ny, _ = find_site(
                 i, tick, recent, False, ref, came, orbit, nb, nb_dist, gene_flag, ci, cf,
                 CREEP_TOL_SCALE, 0, held_i, ox, oy, pair_aim, 1.0,
             )
             if near:
                 ri[i, R_CREEP_UNTIL] = tick + CREEP_HOLD_TICKS
+                if ci[C_TICKS_HOVER] > 0:
+                    note_hover(i, tick, nx, ny, ri)
     # Near a free site: stop-and-go, so that steering and the capture test use readings
     # taken where the robot is, not up to seconds ago.
     creep_stop = (tick + i) % CREEP_PERIOD_TICKS < CREEP_STOP_TICKS
