@@ -343,28 +343,13 @@ def et_part(  # type: ignore[no-untyped-def]
     # the arrays without reference counting (see etswarm.sim.borrow): this loop and the
     # functions it calls per robot and message would otherwise count every array they
     # pass on, atomically
-    stop = borrowed(mem[0])
-    ri = borrowed(mem[1])
-    nb = borrowed(mem[2])
-    nb_dist = borrowed(mem[3])
-    gene_flag = borrowed(mem[4])
-    gene_nn = borrowed(mem[5])
-    slot_info = borrowed(mem[6])
-    ci = borrowed(mem[7])
-    cf = borrowed(mem[8])
-    walk_seen = borrowed(mem[9])
-    held = borrowed(mem[10])
-    idle = borrowed(mem[11])
-    alive = borrowed(alive)
-    in_count = borrowed(in_count)
-    in_type = borrowed(in_type)
-    in_data = borrowed(in_data)
-    in_dist = borrowed(in_dist)
-    motor = borrowed(motor)
-    led = borrowed(led)
-    out_on = borrowed(out_on)
-    out_type = borrowed(out_type)
-    out_data = borrowed(out_data)
+    stop, ri, nb, nb_dist, gene_flag, gene_nn, slot_info, ci, cf, walk_seen, held, idle = (
+        borrowed(mem)
+    )
+    alive, in_count, in_type, in_data, in_dist = borrowed(
+        (alive, in_count, in_type, in_data, in_dist)
+    )
+    motor, led, out_on, out_type, out_data = borrowed((motor, led, out_on, out_type, out_data))
     every = ci[C_EVAL_EVERY]
     phase = (tick + lo) % every  # (tick + i) % every, kept without a division per robot
     for i in range(lo, hi):
