@@ -40,6 +40,7 @@ from etswarm.algorithm.memory import (
     NB_LAST,
     NB_MASK,
     NB_PREV,
+    NB_READINGS,
     NB_RELEASED,
     NB_STATE,
     NB_TS,
@@ -54,6 +55,7 @@ from etswarm.algorithm.memory import (
     R_LEADER,
     R_LOST_SINCE,
     R_MASK,
+    R_MOVED_TICK,
     R_PARENT,
     R_PEND_EPOCH,
     R_PEND_N,
@@ -89,6 +91,7 @@ from etswarm.algorithm.messages import (
 )
 from etswarm.algorithm.params import (
     C_EVAL_EVERY,
+    C_STILL_READINGS,
     C_TICKS_CLEAR,
     C_TICKS_NB_FRESH,
 )
@@ -154,7 +157,24 @@ def near_epoch(own, wrapped, modulus):  # type: ignore[no-untyped-def]
 
 
 @njit(inline="always")
-def ingest(i, k, tick, ri, in_type, in_data, in_dist, nb, nb_dist):  # type: ignore[no-untyped-def]
+def stands_still(state):  # type: ignore[no-untyped-def]
+    """A robot in this state has its motors off: Queued, or placed and not electing."""
+    return state == QUEUED or INACTIVE <= state <= STABLE
+
+
+@njit(inline="always")
+def average_reading(i, slot, last_mean, last_count, most, nb, nb_dist):  # type: ignore[no-untyped-def]
+    """Fold the reading just filed in ``nb_dist[i, slot]`` (mm) into ``last_mean``, the mean
+    of the row's ``last_count`` earlier readings taken since both robots last moved: a
+    running mean of up to ``most`` readings, then each new one weighs ``1 / most``."""
+    n = min(last_count + 1, most)
+    if n > 1:
+        nb_dist[i, slot] = last_mean + (nb_dist[i, slot] - last_mean) / n
+        nb[i, slot, NB_READINGS] = n
+
+
+@njit(inline="always")
+def ingest(i, k, tick, ri, in_type, in_data, in_dist, nb, nb_dist, ci):  # type: ignore[no-untyped-def]
     """Store message k of robot i's inbox in its neighbour table (layouts in ``messages``).
 
     Returns the message kind, plus ``CHANGED`` for a status message that filled a new row
@@ -168,8 +188,14 @@ def ingest(i, k, tick, ri, in_type, in_data, in_dist, nb, nb_dist):  # type: ign
     created = slot < 0
     if created:
         slot = -slot - 1
+    # Whether this robot has stood still since the row's last reading (motors off since
+    # then, see R_MOVED_TICK), and that row's mean and count, before they are overwritten.
+    still_since_last = not created and ri[i, R_MOVED_TICK] < nb[i, slot, NB_LAST]
+    last_mean = nb_dist[i, slot]
+    last_count = nb[i, slot, NB_READINGS]
     nb[i, slot, NB_LAST] = tick
     nb_dist[i, slot] = in_dist[i, k]
+    nb[i, slot, NB_READINGS] = 1
     if kind == MSG_ELECT:
         wrapped = np.int64(in_type[i, k]) >> EPOCH_SHIFT
         nb[i, slot, NB_EEPOCH] = near_epoch(ri[i, R_EPOCH] + 1, wrapped, 32)
@@ -207,6 +233,8 @@ def ingest(i, k, tick, ri, in_type, in_data, in_dist, nb, nb_dist):  # type: ign
             ri[i, R_ADOPTED_AT] = tick  # it works for an older target: relay the newer one
     if not created and nb[i, slot, NB_STATE] != state:
         nb[i, slot, NB_PREV] = nb[i, slot, NB_STATE]
+    if still_since_last and stands_still(nb[i, slot, NB_STATE]) and stands_still(state):
+        average_reading(i, slot, last_mean, last_count, ci[C_STILL_READINGS], nb, nb_dist)
     nb[i, slot, NB_STATE] = state
     if state >= INACTIVE:
         tx = np.int64(in_data[i, k, 3])
@@ -359,6 +387,8 @@ def et_part(  # type: ignore[no-untyped-def]
             phase = 0
         if not alive[i]:
             continue
+        if motor[i] != STOP:
+            ri[i, R_MOVED_TICK] = tick - 1  # its motors ran over the last tick
         count = in_count[i]
         wake = idle[i]
         if wake > tick and count == 0:
@@ -366,7 +396,7 @@ def et_part(  # type: ignore[no-untyped-def]
         new_msgs = False
         election_heard = False
         for k in range(count):
-            kind = ingest(i, k, tick, ri, in_type, in_data, in_dist, nb, nb_dist)
+            kind = ingest(i, k, tick, ri, in_type, in_data, in_dist, nb, nb_dist, ci)
             if kind == MSG_STATUS:
                 new_msgs = True
                 if np.int64(in_data[i, k, 2]) & 0x0F == LEADER:
