@@ -88,3 +88,36 @@ def test_a_split_t_regrows_both_remnants_with_far_first_release() -> None:
     assert summary["max_leaders_per_component"] <= 1
     assert summary["duplicate_tags"] == []
     assert summary["states"]["Danger"] == 0 and summary["states"]["Leader"] == 0
+
+
+def crowded_far_end(epoch: int):  # type: ignore[no-untyped-def]
+    """The chain of ``chain``, with a searcher (ID 8) beside its far end (robot 7), heard
+    again at every evaluation; every robot works for target ``epoch``."""
+    ri, nb, ci = chain("far")
+    ri[:, R_EPOCH] = epoch
+    for i in range(10):
+        for slot in range(nb.shape[1]):
+            if nb[i, slot, NB_ID] >= 0:
+                nb[i, slot, NB_EPOCH] = epoch
+    hear(nb, 7, 1, 8, State.SEARCH, 0, epoch)
+    return ri, nb, ci
+
+
+@pytest.mark.parametrize(("epoch", "leaves"), [(1, True), (0, False)])
+def test_a_robot_crowded_by_a_searcher_leaves_after_damage_only(epoch: int, leaves: bool) -> None:
+    ri, nb, ci = crowded_far_end(epoch)
+    crowded_ticks = round(ETParams().regrowth_crowded_s * 31)
+    step = 31
+    for tick in range(TICK, TICK + crowded_ticks + 2 * step, step):
+        nb[7, 1, NB_LAST] = tick  # the searcher is heard at every evaluation
+        for i in (5, 0, 7):
+            nb[i, 0, NB_LAST] = tick
+            nb[i, 1, NB_LAST] = tick
+        queued_rule(7, tick, ri, nb, ci, 100)
+        if ri[7, R_STATE] == State.SEARCH:
+            break
+    # Its wait for the searcher to clear ends after regrowth_crowded_s in a regenerated
+    # remnant, not before, and never in the first formation (the repository's rule).
+    assert (ri[7, R_STATE] == State.SEARCH) == leaves
+    if leaves:
+        assert tick - TICK >= crowded_ticks
