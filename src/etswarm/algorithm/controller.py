@@ -325,6 +325,22 @@ def encode(i, tick, ri, out_on, out_type, out_data):  # type: ignore[no-untyped-
 
 
 @njit
+def busy_robots(lo, hi, tick, alive, in_count, idle):  # type: ignore[no-untyped-def]
+    """The robots of ``lo .. hi - 1`` with something to do this tick, in index order: alive,
+    and awake (``idle`` <= ``tick``) or with messages to file (``in_count`` > 0); the
+    others sleep (see :func:`et_part`). Returns ``(busy, n)``: ``busy[:n]`` their IDs
+    (``busy`` (hi - lo,) int64). Listed without a branch per robot: whether a robot heard
+    something is as good as random, and a branch on it mispredicted often.
+    """
+    busy = np.empty(hi - lo, dtype=np.int64)
+    n = 0
+    for i in range(lo, hi):
+        busy[n] = i
+        n += np.int64(alive[i] & ((in_count[i] > 0) | (idle[i] <= tick)))
+    return busy, n
+
+
+@njit
 def et_part(  # type: ignore[no-untyped-def]
     lo,
     hi,
@@ -362,18 +378,12 @@ def et_part(  # type: ignore[no-untyped-def]
     )
     motor, led, out_on, out_type, out_data = borrowed((motor, led, out_on, out_type, out_data))
     every = ci[C_EVAL_EVERY]
-    phase = (tick + lo) % every  # (tick + i) % every, kept without a division per robot
-    for i in range(lo, hi):
-        due = phase == 0
-        phase += 1
-        if phase == every:
-            phase = 0
-        if not alive[i]:
-            continue
+    busy, n_busy = busy_robots(lo, hi, tick, alive, in_count, idle)
+    for b in range(n_busy):
+        i = busy[b]
+        due = (tick + i) % every == 0
         count = in_count[i]
         wake = idle[i]
-        if wake > tick and count == 0:
-            continue  # a sleeping Queued robot that heard nothing: nothing to do
         new_msgs = False
         election_heard = False
         if count:
