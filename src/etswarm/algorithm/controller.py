@@ -106,6 +106,9 @@ from etswarm.algorithm.silent import encode_silent, ingest_silent, note_silent, 
 from etswarm.sim.borrow import borrowed
 from etswarm.sim.prefetch import prefetch
 
+#: The table rows of the busy robot this many places ahead are asked for (``et_part``).
+BUSY_AHEAD = 4
+
 #: Added to ``ingest``'s answer for a status message that changed its row (see there).
 CHANGED = 8
 
@@ -381,6 +384,10 @@ def et_part(  # type: ignore[no-untyped-def]
     busy, n_busy = busy_robots(lo, hi, tick, alive, in_count, idle)
     for b in range(n_busy):
         i = busy[b]
+        # its IDs and epochs (filing reads both) arrive while the robots before it work
+        ahead = busy[min(b + BUSY_AHEAD, n_busy - 1)]
+        prefetch_field(ahead, NB_ID, nb)
+        prefetch_field(ahead, NB_EPOCH, nb)
         due = (tick + i) % every == 0
         count = in_count[i]
         wake = idle[i]
