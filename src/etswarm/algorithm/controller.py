@@ -158,6 +158,18 @@ def prefetch_field(i, f, nb):  # type: ignore[no-untyped-def]
     prefetch(row, 15)
 
 
+@njit
+def prefetch_memory(i, ri):  # type: ignore[no-untyped-def]
+    """Ask for the start of robot i's memory row, fields 0 .. R_EPOCH (what filing and
+    the wake test read: state, lowest Queued ID, released count, epoch); changes no
+    value."""
+    row = ri[i]
+    prefetch(row, 0)
+    prefetch(row, 7)
+    prefetch(row, 15)
+    prefetch(row, R_EPOCH)
+
+
 @njit(inline="always")
 def near_epoch(own, wrapped, modulus):  # type: ignore[no-untyped-def]
     """The epoch nearest to ``own`` whose value mod ``modulus`` is ``wrapped``."""
@@ -388,6 +400,7 @@ def et_part(  # type: ignore[no-untyped-def]
         ahead = busy[min(b + BUSY_AHEAD, n_busy - 1)]
         prefetch_field(ahead, NB_ID, nb)
         prefetch_field(ahead, NB_EPOCH, nb)
+        prefetch_memory(ahead, ri)
         due = (tick + i) % every == 0
         count = in_count[i]
         wake = idle[i]
