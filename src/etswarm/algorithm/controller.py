@@ -401,6 +401,8 @@ def et_part(  # type: ignore[no-untyped-def]
         prefetch_field(ahead, NB_ID, nb)
         prefetch_field(ahead, NB_EPOCH, nb)
         prefetch_memory(ahead, ri)
+        prefetch(in_data, ahead)
+        prefetch(in_dist, ahead)
         due = (tick + i) % every == 0
         count = in_count[i]
         wake = idle[i]
