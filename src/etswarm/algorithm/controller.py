@@ -403,7 +403,6 @@ def et_part(  # type: ignore[no-untyped-def]
         prefetch_memory(ahead, ri)
         prefetch(in_data, ahead)
         prefetch(in_dist, ahead)
-        due = (tick + i) % every == 0
         count = in_count[i]
         wake = idle[i]
         new_msgs = False
@@ -437,6 +436,7 @@ def et_part(  # type: ignore[no-untyped-def]
             # changed that (an election or target message wakes it), so the rest would
             # skip it too; skipping here spares reading its memory row.
             continue
+        due = (tick + i) % every == 0
         if election_heard and ri[i, R_PHASE] == PHASE_NORMAL:
             for m in range(nb.shape[1]):
                 if nb[i, m, NB_ID] >= 0 and nb[i, m, NB_EEPOCH] == ri[i, R_EPOCH] + 1:
