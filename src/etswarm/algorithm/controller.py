@@ -40,6 +40,7 @@ from etswarm.algorithm.memory import (
     NB_LAST,
     NB_MASK,
     NB_PREV,
+    NB_READINGS,
     NB_RELEASED,
     NB_STATE,
     NB_TS,
@@ -54,6 +55,7 @@ from etswarm.algorithm.memory import (
     R_LEADER,
     R_LOST_SINCE,
     R_MASK,
+    R_MOVED_TICK,
     R_PARENT,
     R_PEND_EPOCH,
     R_PEND_N,
@@ -89,6 +91,7 @@ from etswarm.algorithm.messages import (
 )
 from etswarm.algorithm.params import (
     C_EVAL_EVERY,
+    C_STILL_READINGS,
     C_TICKS_CLEAR,
     C_TICKS_NB_FRESH,
 )
@@ -180,7 +183,24 @@ def near_epoch(own, wrapped, modulus):  # type: ignore[no-untyped-def]
 
 
 @njit(inline="always")
-def ingest(i, k, tick, ri, in_type, in_data, in_dist, nb, nb_dist):  # type: ignore[no-untyped-def]
+def stands_still(state):  # type: ignore[no-untyped-def]
+    """A robot in this state has its motors off: Queued, or placed and not electing."""
+    return state == QUEUED or INACTIVE <= state <= STABLE
+
+
+@njit(inline="always")
+def average_reading(i, slot, last_mean, last_count, most, nb, nb_dist):  # type: ignore[no-untyped-def]
+    """Fold the reading just filed in ``nb_dist[i, slot]`` (mm) into ``last_mean``, the mean
+    of the row's ``last_count`` earlier readings taken since both robots last moved: a
+    running mean of up to ``most`` readings, then each new one weighs ``1 / most``."""
+    n = min(last_count + 1, most)
+    if n > 1:
+        nb_dist[i, slot] = last_mean + (nb_dist[i, slot] - last_mean) / n
+        nb[i, slot, NB_READINGS] = n
+
+
+@njit(inline="always")
+def ingest(i, k, tick, ri, in_type, in_data, in_dist, nb, nb_dist, ci):  # type: ignore[no-untyped-def]
     """Store message k of robot i's inbox in its neighbour table (layouts in ``messages``).
 
     Returns the message kind, plus ``CHANGED`` for a status message that filled a new row
@@ -194,8 +214,14 @@ def ingest(i, k, tick, ri, in_type, in_data, in_dist, nb, nb_dist):  # type: ign
     created = slot < 0
     if created:
         slot = -slot - 1
+    # Whether this robot has stood still since the row's last reading (motors off since
+    # then, see R_MOVED_TICK), and that row's mean and count, before they are overwritten.
+    still_since_last = not created and ri[i, R_MOVED_TICK] < nb[i, slot, NB_LAST]
+    last_mean = nb_dist[i, slot]
+    last_count = nb[i, slot, NB_READINGS]
     nb[i, slot, NB_LAST] = tick
     nb_dist[i, slot] = in_dist[i, k]
+    nb[i, slot, NB_READINGS] = 1
     if kind == MSG_ELECT:
         wrapped = np.int64(in_type[i, k]) >> EPOCH_SHIFT
         nb[i, slot, NB_EEPOCH] = near_epoch(ri[i, R_EPOCH] + 1, wrapped, 32)
@@ -233,6 +259,8 @@ def ingest(i, k, tick, ri, in_type, in_data, in_dist, nb, nb_dist):  # type: ign
             ri[i, R_ADOPTED_AT] = tick  # it works for an older target: relay the newer one
     if not created and nb[i, slot, NB_STATE] != state:
         nb[i, slot, NB_PREV] = nb[i, slot, NB_STATE]
+    if still_since_last and stands_still(nb[i, slot, NB_STATE]) and stands_still(state):
+        average_reading(i, slot, last_mean, last_count, ci[C_STILL_READINGS], nb, nb_dist)
     nb[i, slot, NB_STATE] = state
     if state >= INACTIVE:
         tx = np.int64(in_data[i, k, 3])
@@ -340,9 +368,11 @@ def encode(i, tick, ri, out_on, out_type, out_data):  # type: ignore[no-untyped-
 
 
 @njit
-def busy_robots(lo, hi, tick, alive, in_count, idle):  # type: ignore[no-untyped-def]
+def busy_robots(lo, hi, tick, alive, in_count, idle, motor):  # type: ignore[no-untyped-def]
     """The robots of ``lo .. hi - 1`` with something to do this tick, in index order: alive,
-    and awake (``idle`` <= ``tick``) or with messages to file (``in_count`` > 0); the
+    and awake (``idle`` <= ``tick``), with messages to file (``in_count`` > 0) or with
+    motors that ran over the last tick (``motor``, it notes when it last moved; a robot
+    goes to sleep with its motors off, so this adds none but after outside edits); the
     others sleep (see :func:`et_part`). Returns ``(busy, n)``: ``busy[:n]`` their IDs
     (``busy`` (hi - lo,) int64). Listed without a branch per robot: whether a robot heard
     something is as good as random, and a branch on it mispredicted often.
@@ -351,7 +381,7 @@ def busy_robots(lo, hi, tick, alive, in_count, idle):  # type: ignore[no-untyped
     n = 0
     for i in range(lo, hi):
         busy[n] = i
-        n += np.int64(alive[i] & ((in_count[i] > 0) | (idle[i] <= tick)))
+        n += np.int64(alive[i] & ((in_count[i] > 0) | (idle[i] <= tick) | (motor[i] != STOP)))
     return busy, n
 
 
@@ -393,7 +423,7 @@ def et_part(  # type: ignore[no-untyped-def]
     )
     motor, led, out_on, out_type, out_data = borrowed((motor, led, out_on, out_type, out_data))
     every = ci[C_EVAL_EVERY]
-    busy, n_busy = busy_robots(lo, hi, tick, alive, in_count, idle)
+    busy, n_busy = busy_robots(lo, hi, tick, alive, in_count, idle, motor)
     for b in range(n_busy):
         i = busy[b]
         # its IDs and epochs (filing reads both) arrive while the robots before it work
@@ -403,6 +433,8 @@ def et_part(  # type: ignore[no-untyped-def]
         prefetch_memory(ahead, ri)
         prefetch(in_data, ahead)
         prefetch(in_dist, ahead)
+        if motor[i] != STOP:
+            ri[i, R_MOVED_TICK] = tick - 1  # its motors ran over the last tick
         count = in_count[i]
         wake = idle[i]
         new_msgs = False
@@ -412,7 +444,7 @@ def et_part(  # type: ignore[no-untyped-def]
             # asked for now, the two misses overlap instead of following each other.
             prefetch_field(i, NB_EPOCH, nb)
         for k in range(count):
-            kind = ingest(i, k, tick, ri, in_type, in_data, in_dist, nb, nb_dist)
+            kind = ingest(i, k, tick, ri, in_type, in_data, in_dist, nb, nb_dist, ci)
             if kind == MSG_STATUS:
                 new_msgs = True
                 if np.int64(in_data[i, k, 2]) & 0x0F == LEADER:

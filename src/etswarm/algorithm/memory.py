@@ -130,7 +130,13 @@ R_HOLD_UNTIL = R_SETTLE_TRIES + 1  # a Queued robot releases no robot before thi
 R_HOVER_X = R_HOLD_UNTIL + 1
 R_HOVER_Y = R_HOVER_X + 1
 R_HOVER_SINCE = R_HOVER_Y + 1
-R_FIELDS = R_HOVER_SINCE + 1
+#: The last tick at which the robot's motors were on: it has stood where it is since the
+#: tick after (``controller.ingest`` averages readings taken since then).
+R_MOVED_TICK = R_HOVER_SINCE + 1
+#: A Queued robot of a regenerated target has heard a searcher within ``release_clear_s``
+#: at every evaluation since this tick + 1 (0: it did not at its last one).
+R_CROWDED_SINCE = R_MOVED_TICK + 1
+R_FIELDS = R_CROWDED_SINCE + 1
 
 PHASE_NORMAL = 0
 PHASE_ELECTING = 1
@@ -157,7 +163,8 @@ NB_ELAST = 14  # tick of its last election message
 NB_EPOCH = 15  # the target epoch the robot works for (from its status message's type)
 NB_HOPS = 16  # a Queued robot's hops to the target's placed robots (``release``)
 NB_ANCHORED = 17  # byte 6 of a Queued or searching robot's status (see ``messages``)
-NB_FIELDS = 18
+NB_READINGS = 18  # readings averaged into nb_dist (both robots still since the first)
+NB_FIELDS = 19
 
 SLOT_N = 0  # cells of the target
 SLOT_LIMIT = 1  # robots the repository releases for it

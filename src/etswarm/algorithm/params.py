@@ -42,7 +42,9 @@ C_TICKS_HOLD = 26  # a Queued robot that hears a yielding searcher holds release
 C_LOST_YIELD = 27  # 1: a lost searcher yields to lower-ID searchers as on the edge
 C_REGROW_RETRIES = 28  # settle retries of a searcher working for a regenerated target
 C_TICKS_HOVER = 29  # after damage, a searcher near one free site this long centres its window on d
-N_CI = 30
+C_STILL_READINGS = 30  # a still robot averages up to this many readings of a still neighbour
+C_TICKS_CROWDED = 31  # after damage, a Queued robot crowded by searchers this long leaves anyway
+N_CI = 32
 
 F_SPACING = 0  # lattice spacing d
 F_PAIR_TOL = 1  # two references within this of d trigger a site candidate
@@ -72,7 +74,7 @@ ORBIT_MODES = ("bounce", "clockwise")
 NON_NEGATIVE: frozenset[str] = frozenset(
     {
         "pair_aim_relax_s", "settle_retries", "regrowth_settle_retries", "release_hold_s",
-        "regrowth_hover_s",
+        "regrowth_hover_s", "regrowth_crowded_s",
     }
 )
 #: Parameters that may take any sign.
@@ -137,6 +139,19 @@ class ETParams:
     #: 16, `H` x 26 against 40); in first formations it cost compact shapes (hexagon 5 of
     #: 10 against 9), so it applies after damage only (docs/algorithm.md). 0: never.
     regrowth_hover_s: float = 5.0
+    #: After damage, a Queued robot that has heard a searcher within ``release_clear_s``
+    #: at every evaluation for this long stops waiting for the searchers to clear: its
+    #: remnant's Queued robots stand packed round the shape, and a searcher that hears no
+    #: placed robot can be walled in among them, heard by all of them for ever (traced on
+    #: `T` split y=mid seed 6: six Queued robots round one searcher for 2.6 h, seven sites
+    #: free). 0: always wait (the first formation's rule).
+    regrowth_crowded_s: float = 300.0
+    #: A robot that stands still keeps the mean of up to this many readings of each
+    #: neighbour that stands still too (Queued or placed), taken since either last moved,
+    #: as its distance to that neighbour; beyond that many, each new reading weighs 1/this.
+    #: Readings carry N(0, 2 mm) noise each, and a searcher confirming a site on single
+    #: readings failed on one in the tail. 1: every reading stands alone (the paper).
+    still_readings: int = 1
     follow_offset_mm: float = 0.0
     closing_speed_mm_s: float = 5.0
     clearance_mm: float = 38.0
@@ -277,6 +292,8 @@ class ETParams:
         ci[C_REGROW_RETRIES] = self.regrowth_settle_retries
         ci[C_TICKS_HOVER] = round(self.regrowth_hover_s * ticks_per_s)
         ci[C_TICKS_HOLD] = round(self.release_hold_s * ticks_per_s)
+        ci[C_STILL_READINGS] = self.still_readings
+        ci[C_TICKS_CROWDED] = round(self.regrowth_crowded_s * ticks_per_s)
         cf = np.zeros(N_CF, dtype=np.float64)
         cf[F_SPACING] = self.spacing_mm
         cf[F_PAIR_TOL] = self.pair_tol_mm

@@ -32,6 +32,7 @@ from etswarm.algorithm.memory import (
     NB_LAST,
     NB_RELEASED,
     NB_STATE,
+    R_CROWDED_SINCE,
     R_EPOCH,
     R_FLOOR,
     R_FLOOR_SINCE,
@@ -45,6 +46,7 @@ from etswarm.algorithm.messages import HOLD_UNIT_TICKS, YIELDING_BIT
 from etswarm.algorithm.params import (
     C_RELEASE_FAR,
     C_TICKS_CLEAR,
+    C_TICKS_CROWDED,
     C_TICKS_HOLD,
     C_TICKS_NB_FRESH,
     C_TICKS_QUIET,
@@ -78,6 +80,18 @@ def shape_hops(i, tick, ri, nb, fresh):  # type: ignore[no-untyped-def]
     return min(least + 1, HOPS_NONE)
 
 
+@njit(inline="always")
+def crowded_long(i, tick, ri, ci, clear):  # type: ignore[no-untyped-def]
+    """Queued robot i has heard a searcher within the clearing time at every evaluation
+    for ``C_TICKS_CROWDED`` ticks (``clear``: it has not now); keeps ``R_CROWDED_SINCE``."""
+    if clear:
+        ri[i, R_CROWDED_SINCE] = 0
+        return False
+    if ri[i, R_CROWDED_SINCE] == 0:
+        ri[i, R_CROWDED_SINCE] = tick + 1
+    return tick - (ri[i, R_CROWDED_SINCE] - 1) >= ci[C_TICKS_CROWDED]
+
+
 @njit
 def queued_rule(i, tick, ri, nb, ci, limit):  # type: ignore[no-untyped-def]
     """Lowest-ID release from the repository.
@@ -93,7 +107,9 @@ def queued_rule(i, tick, ri, nb, ci, limit):  # type: ignore[no-untyped-def]
     a regenerated remnant the robot that leaves is the one with the most hops to the shape
     among those it hears (ties: the lowest ID), see the module docstring. With
     ``C_TICKS_HOLD`` (``release_hold_s``) it also waits out the release hold it heard of
-    (``R_HOLD_UNTIL``, see ``ETParams.release_hold_s``).
+    (``R_HOLD_UNTIL``, see ``ETParams.release_hold_s``). In a regenerated remnant a robot
+    that has waited ``C_TICKS_CROWDED`` ticks for the searchers to clear leaves anyway
+    (``crowded_long``, ``ETParams.regrowth_crowded_s``).
 
     Returns the first tick at which a later evaluation could give something else if the
     robot hears nothing new meanwhile (``NEVER``: none), or 0 when that is not known (it
@@ -151,10 +167,14 @@ def queued_rule(i, tick, ri, nb, ci, limit):  # type: ignore[no-untyped-def]
     if lowest != ri[i, R_QMIN]:
         ri[i, R_QMIN] = lowest
         ri[i, R_QMIN_SINCE] = tick
+    clear = tick - last_searcher >= ci[C_TICKS_CLEAR]
+    crowded_waits = epoch > 0 and ci[C_TICKS_CROWDED] > 0
+    if crowded_waits:
+        clear = clear or crowded_long(i, tick, ri, ci, clear)
     if (
         lowest == i
         and released < limit
-        and tick - last_searcher >= ci[C_TICKS_CLEAR]
+        and clear
         and tick - ri[i, R_QMIN_SINCE] >= ci[C_TICKS_QUIET]
         and tick - ri[i, R_FLOOR_SINCE] >= ci[C_TICKS_RELEASE]
         and tick >= hold
@@ -164,8 +184,9 @@ def queued_rule(i, tick, ri, nb, ci, limit):  # type: ignore[no-untyped-def]
         ri[i, R_FLOOR_SINCE] = tick
         ri[i, R_RELEASED] = released + 1
         return 0
-    if far_first or hold_ticks > 0:
-        # (with the release hold its status changes with every tick: it stays awake)
+    if far_first or hold_ticks > 0 or crowded_waits:
+        # (with the release hold its status changes with every tick, and a crowded
+        # robot's wait runs out without a message: it stays awake)
         return 0
     if lowest != i:
         return lowest_last + fresh + 1
