@@ -61,7 +61,8 @@ F_AIM_RELAX = 11  # ticks at the shape over which the pair window's centre moves
 F_CONSIST_WIDEN = 12  # a widened pocket candidate's consistency tolerance grows up to this
 F_SETTLE_SCALE = 13  # a settled searcher confirms its site with windows this many times wider
 F_WIDEN_TICKS = 14  # ticks at the shape over which a searcher's tolerances widen to widen_max
-N_CF = 15
+F_DIVE = 15  # after damage, a searcher long at the shape edge-follows up to this much nearer (mm)
+N_CF = 16
 
 #: Census methods (``ETParams.census``): the paper's periphery walk, or a spanning tree.
 CENSUS_METHODS = ("tree", "walk")
@@ -74,7 +75,7 @@ ORBIT_MODES = ("bounce", "clockwise")
 NON_NEGATIVE: frozenset[str] = frozenset(
     {
         "pair_aim_relax_s", "settle_retries", "regrowth_settle_retries", "release_hold_s",
-        "regrowth_hover_s", "regrowth_crowded_s",
+        "regrowth_hover_s", "regrowth_crowded_s", "regrowth_dive_mm",
     }
 )
 #: Parameters that may take any sign.
@@ -153,6 +154,15 @@ class ETParams:
     #: readings failed on one in the tail. 1: every reading stands alone (the paper).
     still_readings: int = 1
     follow_offset_mm: float = 0.0
+    #: After damage, a searcher edge-follows placed robots at d + ``follow_offset_mm`` -
+    #: this x (its time at the shape / ``widen_s``, at most 1): where growth has pinched a
+    #: notch narrower than 2 d, a robot orbiting at d from the nearest robot passes outside
+    #: the free site at its bottom for ever (traced on `arrow` split y=mid seed 5: 20-23
+    #: mm from it on every lap for 2.5 h). In first formations diving cost compact shapes
+    #: (dumbbell 4 of 10 formed with 5 mm, starfish 0), so it applies after damage only.
+    #: Over 18 damage cases (seeds 0-19): 226 of 322 runs re-formed with 3 mm, 221 with 5,
+    #: 189 with 0; 8 mm (89 of 170 on seeds 0-9) brings bodies into contact. 0: never nearer.
+    regrowth_dive_mm: float = 3.0
     closing_speed_mm_s: float = 5.0
     clearance_mm: float = 38.0
     balance_tol_mm: float = 8.0
@@ -308,6 +318,7 @@ class ETParams:
         cf[F_FOLLOW_OFFSET] = self.follow_offset_mm
         cf[F_CLOSING] = self.closing_speed_mm_s / ticks_per_s
         cf[F_CLEARANCE] = self.clearance_mm
+        cf[F_DIVE] = self.regrowth_dive_mm
         cf[F_BALANCE_TOL] = self.balance_tol_mm
         cf[F_WALK_COLLECT] = self.census_collect_mm
         return ci, cf

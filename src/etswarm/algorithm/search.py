@@ -92,6 +92,7 @@ from etswarm.algorithm.params import (
     F_CLOSING,
     F_CONSIST_TOL,
     F_CONSIST_WIDEN,
+    F_DIVE,
     F_FOLLOW_OFFSET,
     F_PAIR_AIM,
     F_PAIR_TOL,
@@ -136,6 +137,9 @@ WIDE_MIN_NEIGHBOURS = 3
 #: Along the repository (no placed robot heard) a searcher drives straight on while its
 #: reading of the nearest Queued robot is within this of its aim (``C_QUEUE_STRIDE``).
 STRIDE_BAND_MM = 4.0
+#: A diving searcher (``ETParams.dive_mm``) turns away from a placed robot this much
+#: nearer than its aim (the clearance, 38 mm, is 2 mm under the undived aim).
+CLEARANCE_BELOW_AIM_MM = 2.0
 CREEP_PERIOD_TICKS = 24
 CREEP_STOP_TICKS = 16
 CREEP_HOLD_TICKS = 62
@@ -775,7 +779,13 @@ def search_rule(  # type: ignore[no-untyped-def]
         motor[i] = STOP
         return
 
-    aim = d + cf[F_FOLLOW_OFFSET]
+    # Long at a regenerated shape, it edge-follows nearer (``regrowth_dive_mm``), into
+    # notches the growth pinched; only placed robots may then come nearer than the
+    # clearance.
+    dive = 0.0
+    if at_shape > 0 and ri[i, R_EPOCH] > 0:
+        dive = cf[F_DIVE] * min(1.0, at_shape / cf[F_WIDEN_TICKS])
+    aim = d + cf[F_FOLLOW_OFFSET] - dive
     # Kilobot orbit (both pivots also move the body forward): pivot away from the group
     # when the last reading of the reference is nearer than the aim, towards it otherwise.
     # Any robot that may have come nearer than the clearance is turned away from.
@@ -786,7 +796,14 @@ def search_rule(  # type: ignore[no-untyped-def]
     # Only the first formation's repository is a queue to walk along; after a
     # regeneration the Queued robots stand packed round the shape.
     along_repository = placed_slot < 0 and ci[C_QUEUE_STRIDE] == 1 and ri[i, R_EPOCH] == 0
-    if obstacle < clearance or nearest < clearance or ((not lost or beacon) and reading < aim):
+    placed_clearance = clearance
+    if dive > 0 and placed_slot >= 0:
+        placed_clearance = min(clearance, aim - CLEARANCE_BELOW_AIM_MM)
+    if (
+        obstacle < clearance
+        or nearest < placed_clearance
+        or ((not lost or beacon) and reading < aim)
+    ):
         if along_repository and obstacle >= clearance and reading >= aim - STRIDE_BAND_MM:
             motor[i] = FORWARD  # the repository is no place to settle: stride along it
             return
