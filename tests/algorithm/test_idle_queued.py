@@ -11,6 +11,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
+from etswarm.algorithm.controller import busy_robots
 from etswarm.algorithm.release import NEVER
 from etswarm.algorithm.run import ETRun, RunConfig
 from etswarm.algorithm.states import State
@@ -95,3 +96,21 @@ def test_the_cheap_measure_check_notes_what_the_full_report_would() -> None:
     assert "formed" in kinds and "reformed" in kinds
     assert summary["settled"]
     assert CheckedRun.skipped > 0 and CheckedRun.checks > CheckedRun.skipped
+
+
+@pytest.mark.parametrize(("lo", "hi"), [(0, 200), (37, 151), (5, 5)])
+def test_busy_robots_lists_the_alive_robots_awake_with_messages_or_moving(lo: int, hi: int) -> None:
+    """``controller.busy_robots`` (the robots ``et_part`` visits) lists, in index order,
+    the alive robots of its range that are awake at the tick, heard something or moved."""
+    rng = np.random.default_rng(3)
+    n, tick = 200, 1000
+    alive = rng.random(n) < 0.9
+    in_count = np.where(rng.random(n) < 0.3, rng.integers(1, 4, n), 0).astype(np.int32)
+    idle = np.where(rng.random(n) < 0.8, rng.integers(990, 1010, n), 0).astype(np.int64)
+    motor = np.where(rng.random(n) < 0.1, rng.integers(1, 4, n), 0).astype(np.int8)
+    busy, count = busy_robots(lo, hi, tick, alive, in_count, idle, motor)
+    want = lo + np.flatnonzero(
+        alive[lo:hi] & ((in_count[lo:hi] > 0) | (idle[lo:hi] <= tick) | (motor[lo:hi] != 0))
+    )
+    assert count == len(want)
+    assert busy[:count].tolist() == want.tolist()

@@ -80,8 +80,9 @@ def radio_phase(tick, cfg, grid, pos, alive, present, tx_phase, out_on, out_type
         mtype = out_type[i]
         cx0, cx1 = cell_range(x, reach, ox, inv, nx)
         cy0, cy1 = cell_range(y, reach, oy, inv, ny)
-        # the slots in range, in slot order, kept without branching on distances
-        n_in = 0
+        # the slots in range, in slot order, kept without branching on distances (an
+        # unsigned count: numba then indexes without a test for negative indices)
+        n_in = np.uint64(0)
         for cy in range(cy0, cy1 + 1):
             row = cy * nx
             for s in range(np.uint64(start[row + cx0]), np.uint64(start[row + cx1 + 1])):
@@ -90,7 +91,7 @@ def radio_phase(tick, cfg, grid, pos, alive, present, tx_phase, out_on, out_type
                 d2 = dx * dx + dy * dy
                 cand_s[n_in] = s
                 cand_d2[n_in] = d2
-                n_in += d2 <= r2
+                n_in += np.uint64(d2 <= r2)
         # ask for the receivers' inbox rows before filing into them (scattered rows)
         for q in range(n_in):
             j = sidx[cand_s[q]]
