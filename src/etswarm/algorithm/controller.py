@@ -214,11 +214,16 @@ def ingest(i, k, tick, ri, in_type, in_data, in_dist, nb, nb_dist, ci):  # type:
     created = slot < 0
     if created:
         slot = -slot - 1
-    # Whether this robot has stood still since the row's last reading (motors off since
-    # then, see R_MOVED_TICK), and that row's mean and count, before they are overwritten.
-    still_since_last = not created and ri[i, R_MOVED_TICK] < nb[i, slot, NB_LAST]
-    last_mean = nb_dist[i, slot]
-    last_count = nb[i, slot, NB_READINGS]
+    # With averaging on (``still_readings`` > 1): whether this robot has stood still since
+    # the row's last reading (motors off since then, see R_MOVED_TICK), and that row's
+    # mean and count, before they are overwritten.
+    still_since_last = False
+    last_mean = 0.0
+    last_count = 0
+    if ci[C_STILL_READINGS] > 1 and not created:
+        still_since_last = ri[i, R_MOVED_TICK] < nb[i, slot, NB_LAST]
+        last_mean = nb_dist[i, slot]
+        last_count = nb[i, slot, NB_READINGS]
     nb[i, slot, NB_LAST] = tick
     nb_dist[i, slot] = in_dist[i, k]
     nb[i, slot, NB_READINGS] = 1
