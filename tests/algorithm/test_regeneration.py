@@ -5,6 +5,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
+from etswarm.algorithm.params import ETParams
 from etswarm.algorithm.run import ETRun, RunConfig
 
 
@@ -74,7 +75,12 @@ def test_targets_are_drawn_where_the_remnants_are() -> None:
     [("T", "split x=mid", 6), ("arrow", "split y=mid", 2)],
 )
 def test_each_remnant_elects_once_and_regrows(shape: str, damage: str, seed: int) -> None:
-    run = ETRun(RunConfig(shape=shape, seed=seed, max_time_s=4 * 3600, damage=(damage,)))
+    # (first formations as traced: without diving, dive_mm=0)
+    config = RunConfig(
+        shape=shape, seed=seed, max_time_s=4 * 3600, damage=(damage,),
+        et=ETParams(dive_mm=0.0),
+    )
+    run = ETRun(config)
     summary = run.run()
     leaders = [e for e in summary["events"] if e["kind"] == "leader"]
     assert len(leaders) == len(summary["components"]), summary["events"]

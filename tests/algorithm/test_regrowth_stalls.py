@@ -2,7 +2,8 @@
 (``regrowth_crowded_s``) and notches too narrow for the orbit at d (``regrowth_dive_mm``).
 
 Each case runs with the default and with the rule switched off, so the test fails if the
-rule stops mattering as well as if the default stops re-forming."""
+rule stops mattering as well as if the default stops re-forming. The first formations are
+those the cases were traced on: without diving in the first formation (``dive_mm=0``)."""
 
 from __future__ import annotations
 
@@ -12,7 +13,8 @@ from etswarm.algorithm.run import ETRun, RunConfig
 
 def split_run(shape: str, damage: str, seed: int, **et: float) -> dict:
     config = RunConfig(
-        shape=shape, seed=seed, max_time_s=4 * 3600, damage=(damage,), et=ETParams(**et)
+        shape=shape, seed=seed, max_time_s=4 * 3600, damage=(damage,),
+        et=ETParams(**{"dive_mm": 0.0, **et}),
     )
     summary = ETRun(config).run()
     assert summary["formed"]

@@ -93,6 +93,7 @@ from etswarm.algorithm.params import (
     F_CONSIST_TOL,
     F_CONSIST_WIDEN,
     F_DIVE,
+    F_DIVE_FIRST,
     F_FOLLOW_OFFSET,
     F_PAIR_AIM,
     F_PAIR_TOL,
@@ -779,12 +780,15 @@ def search_rule(  # type: ignore[no-untyped-def]
         motor[i] = STOP
         return
 
-    # Long at a regenerated shape, it edge-follows nearer (``regrowth_dive_mm``), into
-    # notches the growth pinched; only placed robots may then come nearer than the
-    # clearance.
+    # Long at the shape, it edge-follows nearer, into notches the growth pinched: after
+    # damage from its arrival (``regrowth_dive_mm``), in the first formation once its
+    # tolerances have widened (``dive_mm``). Only placed robots may then come nearer than
+    # the clearance.
     dive = 0.0
     if at_shape > 0 and ri[i, R_EPOCH] > 0:
         dive = cf[F_DIVE] * min(1.0, at_shape / cf[F_WIDEN_TICKS])
+    elif at_shape > cf[F_WIDEN_TICKS]:
+        dive = cf[F_DIVE_FIRST] * min(1.0, at_shape / cf[F_WIDEN_TICKS] - 1.0)
     aim = d + cf[F_FOLLOW_OFFSET] - dive
     # Kilobot orbit (both pivots also move the body forward): pivot away from the group
     # when the last reading of the reference is nearer than the aim, towards it otherwise.

@@ -1,0 +1,26 @@
+"""``dive_mm``: in the first formation a searcher long at the shape edge-follows nearer,
+into notches the growth pinched narrower than 2 d, where the last free sites sat."""
+
+from __future__ import annotations
+
+import pytest
+
+from etswarm.algorithm.params import ETParams
+from etswarm.algorithm.run import ETRun, RunConfig
+
+
+def formation(shape: str, seed: int, **et: float) -> dict:
+    config = RunConfig(shape=shape, seed=seed, max_time_s=4 * 3600, et=ETParams(**et))
+    summary = ETRun(config).run()
+    assert summary["duplicate_tags"] == []
+    return summary
+
+
+@pytest.mark.parametrize(("shape", "seed"), [("disc", 6), ("heart", 24)])
+def test_diving_searchers_fill_the_last_sites(shape: str, seed: int) -> None:
+    # Both stall for the 4 h without diving (pinched and narrow last sites).
+    level = formation(shape, seed, dive_mm=0.0)
+    assert not level["formed"]
+    summary = formation(shape, seed)
+    assert summary["formed"] and summary["jaccard"] == 1.0
+    assert summary["states"]["Stable"] == summary["robots"]
