@@ -168,7 +168,7 @@ class ETParams:
     #: In the first formation, a searcher that has been ``widen_s`` at the shape edge-follows
     #: nearer too, by up to this much over the next ``widen_s`` (diving from its arrival,
     #: as after damage, lost starfish: 4 of 20 formed against 13). Over seeds 0-19 of the 13
-    #: shapes 227 of 260 formed against 214, seeds 20-29 113 of 130 against 98, with
+    #: shapes 227 of 260 formed against 214, seeds 20-29 109 of 130 against 98, with
     #: shorter median formation times on thin shapes. 0: never nearer.
     dive_mm: float = 3.0
     closing_speed_mm_s: float = 5.0
