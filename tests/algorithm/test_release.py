@@ -19,7 +19,7 @@ from etswarm.algorithm.memory import (
     allocate,
 )
 from etswarm.algorithm.params import ETParams
-from etswarm.algorithm.release import HOPS_NONE, queued_rule, shape_hops
+from etswarm.algorithm.release import HOPS_NONE, crowded_long, queued_rule, shape_hops
 from etswarm.algorithm.run import ETRun, RunConfig
 from etswarm.algorithm.states import State
 
@@ -121,3 +121,18 @@ def test_a_robot_crowded_by_a_searcher_leaves_after_damage_only(epoch: int, leav
     assert (ri[7, R_STATE] == State.SEARCH) == leaves
     if leaves:
         assert tick - TICK >= crowded_ticks
+
+
+
+def test_a_clear_evaluation_restarts_the_crowded_wait() -> None:
+    ri, _, _ = allocate(1)
+    ci, _ = ETParams().pack(31, 0, 0)
+    wait = round(ETParams().regrowth_crowded_s * 31)
+    # crowded for two thirds of the wait, one clear evaluation, two thirds again
+    assert not crowded_long(0, TICK, ri, ci, False)
+    assert not crowded_long(0, TICK + 2 * wait // 3, ri, ci, False)
+    assert not crowded_long(0, TICK + 2 * wait // 3 + 31, ri, ci, True)
+    again = TICK + 2 * wait // 3 + 62
+    assert not crowded_long(0, again, ri, ci, False)
+    assert not crowded_long(0, again + 2 * wait // 3, ri, ci, False)
+    assert crowded_long(0, again + wait, ri, ci, False)

@@ -170,7 +170,9 @@ def queued_rule(i, tick, ri, nb, ci, limit):  # type: ignore[no-untyped-def]
     clear = tick - last_searcher >= ci[C_TICKS_CLEAR]
     crowded_waits = epoch > 0 and ci[C_TICKS_CROWDED] > 0
     if crowded_waits:
-        clear = clear or crowded_long(i, tick, ri, ci, clear)
+        # (called even when clear: a clear evaluation ends the crowded stretch)
+        crowded = crowded_long(i, tick, ri, ci, clear)
+        clear = clear or crowded
     if (
         lowest == i
         and released < limit

@@ -566,6 +566,20 @@ def hovering(i, tick, ri, ci):  # type: ignore[no-untyped-def]
     return tick - (ri[i, R_HOVER_SINCE] - 1) >= ci[C_TICKS_HOVER]
 
 
+@njit(inline="always")
+def dive_depth(at_shape, epoch, cf):  # type: ignore[no-untyped-def]
+    """How much nearer than d + follow offset (mm) a searcher ``at_shape`` ticks at the
+    shape edge-follows: after damage (``epoch`` > 0) up to ``F_DIVE`` over its first
+    ``F_WIDEN_TICKS``; in the first formation up to ``F_DIVE_FIRST`` over the next
+    ``F_WIDEN_TICKS`` after those."""
+    widen_ticks = cf[F_WIDEN_TICKS]
+    if at_shape <= 0:
+        return 0.0
+    if epoch > 0:
+        return cf[F_DIVE] * min(1.0, at_shape / widen_ticks)
+    return cf[F_DIVE_FIRST] * min(1.0, max(0.0, at_shape / widen_ticks - 1.0))
+
+
 @njit
 def search_rule(  # type: ignore[no-untyped-def]
     i, tick, new_msgs, ri, nb, nb_dist, motor, gene_flag, gene_nn, ci, cf, held, ox, oy
@@ -786,11 +800,7 @@ def search_rule(  # type: ignore[no-untyped-def]
     # damage from its arrival (``regrowth_dive_mm``), in the first formation once its
     # tolerances have widened (``dive_mm``). Only placed robots may then come nearer than
     # the clearance.
-    dive = 0.0
-    if at_shape > 0 and ri[i, R_EPOCH] > 0:
-        dive = cf[F_DIVE] * min(1.0, at_shape / cf[F_WIDEN_TICKS])
-    elif at_shape > cf[F_WIDEN_TICKS]:
-        dive = cf[F_DIVE_FIRST] * min(1.0, at_shape / cf[F_WIDEN_TICKS] - 1.0)
+    dive = dive_depth(at_shape, ri[i, R_EPOCH], cf)
     aim = d + cf[F_FOLLOW_OFFSET] - dive
     # Kilobot orbit (both pivots also move the body forward): pivot away from the group
     # when the last reading of the reference is nearer than the aim, towards it otherwise.
