@@ -60,7 +60,7 @@ def test_threaded_formation_is_independent_of_the_thread_count() -> None:
 def test_threaded_regeneration_is_independent_of_the_thread_count() -> None:
     # a triangle formed, split in two: elections, Leaders' requests answered by the host
     config = RunConfig(shape="triangle", seed=1, max_time_s=3 * 3600.0, damage=("split x=0",))
-    runs = {mode: threaded_run(config, 1500.0, mode) for mode in ("two", "one")}
+    runs = {mode: threaded_run(config, 2700.0, mode) for mode in ("two", "one")}
     assert final_state(runs["two"]) == final_state(runs["one"])
     kinds = [e["kind"] for e in runs["two"].events]
     assert "damage" in kinds and "census" in kinds, kinds

@@ -10,11 +10,14 @@ from __future__ import annotations
 from etswarm.algorithm.params import ETParams
 from etswarm.algorithm.run import ETRun, RunConfig
 
+#: The consistency settings of session 12, which the first formations were traced with.
+TRACED = {"consistency_widen_max": 1.0, "fill_lookahead": "off"}
+
 
 def split_run(shape: str, damage: str, seed: int, **et: float) -> dict:
     config = RunConfig(
         shape=shape, seed=seed, max_time_s=4 * 3600, damage=(damage,),
-        et=ETParams(**{"dive_mm": 0.0, **et}),
+        et=ETParams(**{"dive_mm": 0.0, **TRACED, **et}),
     )
     summary = ETRun(config).run()
     assert summary["formed"]

@@ -5,6 +5,7 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
+from etswarm.algorithm.fill_order import strands_a_site
 from etswarm.algorithm.kernel_util import (
     ACTIVE,
     DIR_X,
@@ -71,6 +72,7 @@ from etswarm.algorithm.memory import (
 from etswarm.algorithm.messages import ANCHORED_BIT
 from etswarm.algorithm.params import (
     C_CREEP,
+    C_FILL_LOOKAHEAD,
     C_HOLE_MEMORY,
     C_LOST_BEACON,
     C_LOST_YIELD,
@@ -535,6 +537,12 @@ def find_site(  # type: ignore[no-untyped-def]
                     )
                 if ok and ruled_out_mirror and min_ts >= 0 and err < best_err:
                     if hole_memory and shuts_in(cx, cy, held_i, ox, oy, gene_flag, ci):
+                        continue
+                    if (
+                        hole_memory
+                        and ci[C_FILL_LOOKAHEAD] == 1
+                        and strands_a_site(cx, cy, held_i, ox, oy, gene_flag, ci)
+                    ):
                         continue
                     best_err = err
                     best_x = cx

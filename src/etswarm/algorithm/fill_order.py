@@ -1,0 +1,133 @@
+"""Lookahead on a searcher's memory of held sites: can the shape still be finished?
+
+``site_memory.shuts_in`` looks one step ahead: taking a site must leave every free shape
+site next to it an opening of ``OPENING_SITES`` free neighbour sites. That is not enough
+where three free sites are mutually adjacent in a pocket. Traced on heart seed 4: the
+free sites (2, 0), (3, 0), (3, 1) form a triangle closed on every side but one, and
+(4, 0) beyond it has a single held neighbour. Taking (2, 0) leaves (3, 1) one free
+neighbour and the other way round; (3, 0) and (4, 0) have no two held neighbours to be
+located from. Four searchers orbited for three hours. Each capture that closed the pocket
+passed the one-step test.
+
+``strands_a_site`` plays the rest of the growth forward on a copy of the memory. It
+repeatedly takes any free shape site that has two held neighbour sites to be located
+from and whose capture passes the one-step test, until nothing more can be taken. A
+capture is refused when the shape could be finished before it and cannot be after it.
+When the shape cannot be finished even before the capture, the lookahead says nothing,
+so a run that is stuck already is not stopped altogether. The playout is greedy: it
+may miss an order that works, and then it refuses nothing.
+
+Arrays: ``held_i`` (WX, WY) uint8, one robot's memory (window origin at tag (ox, oy),
+see ``site_memory``); ``gene_flag`` and ``ci`` as in ``kernel_util.gene_at``.
+"""
+
+from __future__ import annotations
+
+from numba import njit
+
+from etswarm.algorithm.kernel_util import DIR_X, DIR_Y, gene_at
+from etswarm.algorithm.site_memory import narrowed
+
+
+@njit(inline="always")
+def _held(scratch, x, y, ox, oy):  # type: ignore[no-untyped-def]
+    """Tag (x, y) is held in ``scratch``; tags outside the window count as free."""
+    wx = x - ox
+    wy = y - oy
+    if 0 <= wx < scratch.shape[0] and 0 <= wy < scratch.shape[1]:
+        return scratch[wx, wy] != 0
+    return False
+
+
+@njit
+def locatable(sx, sy, scratch, ox, oy):  # type: ignore[no-untyped-def]
+    """Site (sx, sy) has two held neighbour sites a searcher can locate it from: two
+    lattice neighbours of each other (consecutive round the site), or two of the second
+    ring (one site apart round it)."""
+    for k in range(6):
+        if not _held(scratch, sx + DIR_X[k], sy + DIR_Y[k], ox, oy):
+            continue
+        k1 = (k + 1) % 6
+        k2 = (k + 2) % 6
+        if _held(scratch, sx + DIR_X[k1], sy + DIR_Y[k1], ox, oy):
+            return True
+        if _held(scratch, sx + DIR_X[k2], sy + DIR_Y[k2], ox, oy):
+            return True
+    return False
+
+
+@njit
+def narrows_a_neighbour(sx, sy, scratch, ox, oy, gene_flag, ci):  # type: ignore[no-untyped-def]
+    """Taking (sx, sy) would leave a free shape site next to it without an opening
+    (``site_memory.narrowed``). ``scratch`` is restored on return."""
+    scratch[sx - ox, sy - oy] = 1
+    bad = False
+    for k in range(6):
+        nx = sx + DIR_X[k]
+        ny = sy + DIR_Y[k]
+        if gene_at(gene_flag, ci, nx, ny) != 1 or _held(scratch, nx, ny, ox, oy):
+            continue
+        if narrowed(nx, ny, scratch, ox, oy):
+            bad = True
+            break
+    scratch[sx - ox, sy - oy] = 0
+    return bad
+
+
+@njit
+def held_around(sx, sy, scratch, ox, oy):  # type: ignore[no-untyped-def]
+    """Number of held neighbour sites of (sx, sy) in ``scratch``."""
+    n = 0
+    for k in range(6):
+        if _held(scratch, sx + DIR_X[k], sy + DIR_Y[k], ox, oy):
+            n += 1
+    return n
+
+
+@njit
+def finishes(scratch, ox, oy, gene_flag, ci):  # type: ignore[no-untyped-def]
+    """Greedy playout on ``scratch`` (modified): while any free shape site is
+    ``locatable`` and does not ``narrows_a_neighbour``, take the one with the most held
+    neighbour sites (the deepest notch first, so the playout does not close pockets
+    itself). True when every shape site in the window ends up held."""
+    wx_n = scratch.shape[0]
+    wy_n = scratch.shape[1]
+    while True:
+        best = -1
+        best_x = 0
+        best_y = 0
+        free = 0
+        for wx in range(wx_n):
+            for wy in range(wy_n):
+                if scratch[wx, wy] != 0 or gene_at(gene_flag, ci, wx + ox, wy + oy) != 1:
+                    continue
+                free += 1
+                n = held_around(wx + ox, wy + oy, scratch, ox, oy)
+                if n <= best or n < 2:
+                    continue
+                if not locatable(wx + ox, wy + oy, scratch, ox, oy):
+                    continue
+                if narrows_a_neighbour(wx + ox, wy + oy, scratch, ox, oy, gene_flag, ci):
+                    continue
+                best = n
+                best_x = wx
+                best_y = wy
+        if free == 0:
+            return True
+        if best < 0:
+            return False
+        scratch[best_x, best_y] = 1
+
+
+@njit
+def strands_a_site(cx, cy, held_i, ox, oy, gene_flag, ci):  # type: ignore[no-untyped-def]
+    """Taking site (cx, cy) turns a shape that the greedy playout finishes from the
+    memory ``held_i`` into one it cannot finish. ``held_i`` is not modified."""
+    if not (0 <= cx - ox < held_i.shape[0] and 0 <= cy - oy < held_i.shape[1]):
+        return False
+    scratch = held_i.copy()
+    if not finishes(scratch, ox, oy, gene_flag, ci):
+        return False
+    scratch[:, :] = held_i
+    scratch[cx - ox, cy - oy] = 1
+    return not finishes(scratch, ox, oy, gene_flag, ci)
