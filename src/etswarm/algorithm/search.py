@@ -538,8 +538,10 @@ def find_site(  # type: ignore[no-untyped-def]
                 if ok and ruled_out_mirror and min_ts >= 0 and err < best_err:
                     if hole_memory and shuts_in(cx, cy, held_i, ox, oy, gene_flag, ci):
                         continue
+                    # the playout is costly: only when a settled robot confirms its site
                     if (
-                        hole_memory
+                        strict
+                        and hole_memory
                         and ci[C_FILL_LOOKAHEAD] == 1
                         and strands_a_site(cx, cy, held_i, ox, oy, gene_flag, ci)
                     ):
