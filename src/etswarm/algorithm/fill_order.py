@@ -30,17 +30,7 @@ from __future__ import annotations
 from numba import njit
 
 from etswarm.algorithm.kernel_util import DIR_X, DIR_Y, gene_at
-from etswarm.algorithm.site_memory import narrowed
-
-
-@njit(inline="always")
-def _held(scratch, x, y, ox, oy):  # type: ignore[no-untyped-def]
-    """Tag (x, y) is held in ``scratch``; tags outside the window count as free."""
-    wx = x - ox
-    wy = y - oy
-    if 0 <= wx < scratch.shape[0] and 0 <= wy < scratch.shape[1]:
-        return scratch[wx, wy] != 0
-    return False
+from etswarm.algorithm.site_memory import is_held, narrows_a_neighbour
 
 
 @njit
@@ -49,33 +39,15 @@ def locatable(sx, sy, scratch, ox, oy):  # type: ignore[no-untyped-def]
     lattice neighbours of each other (consecutive round the site), or two of the second
     ring (one site apart round it)."""
     for k in range(6):
-        if not _held(scratch, sx + DIR_X[k], sy + DIR_Y[k], ox, oy):
+        if not is_held(scratch, sx + DIR_X[k], sy + DIR_Y[k], ox, oy):
             continue
         k1 = (k + 1) % 6
         k2 = (k + 2) % 6
-        if _held(scratch, sx + DIR_X[k1], sy + DIR_Y[k1], ox, oy):
+        if is_held(scratch, sx + DIR_X[k1], sy + DIR_Y[k1], ox, oy):
             return True
-        if _held(scratch, sx + DIR_X[k2], sy + DIR_Y[k2], ox, oy):
+        if is_held(scratch, sx + DIR_X[k2], sy + DIR_Y[k2], ox, oy):
             return True
     return False
-
-
-@njit
-def narrows_a_neighbour(sx, sy, scratch, ox, oy, gene_flag, ci):  # type: ignore[no-untyped-def]
-    """Taking (sx, sy) would leave a free shape site next to it without an opening
-    (``site_memory.narrowed``). ``scratch`` is restored on return."""
-    scratch[sx - ox, sy - oy] = 1
-    bad = False
-    for k in range(6):
-        nx = sx + DIR_X[k]
-        ny = sy + DIR_Y[k]
-        if gene_at(gene_flag, ci, nx, ny) != 1 or _held(scratch, nx, ny, ox, oy):
-            continue
-        if narrowed(nx, ny, scratch, ox, oy):
-            bad = True
-            break
-    scratch[sx - ox, sy - oy] = 0
-    return bad
 
 
 @njit
@@ -83,7 +55,7 @@ def held_around(sx, sy, scratch, ox, oy):  # type: ignore[no-untyped-def]
     """Number of held neighbour sites of (sx, sy) in ``scratch``."""
     n = 0
     for k in range(6):
-        if _held(scratch, sx + DIR_X[k], sy + DIR_Y[k], ox, oy):
+        if is_held(scratch, sx + DIR_X[k], sy + DIR_Y[k], ox, oy):
             n += 1
     return n
 
@@ -111,7 +83,7 @@ def finishes(scratch, ox, oy, gene_flag, ci):  # type: ignore[no-untyped-def]
                     continue
                 if not locatable(wx + ox, wy + oy, scratch, ox, oy):
                     continue
-                if narrows_a_neighbour(wx + ox, wy + oy, scratch, ox, oy, gene_flag, ci):
+                if narrows_a_neighbour(wx + ox, wy + oy, scratch, ox, oy, gene_flag, ci, False):
                     continue
                 best = n
                 best_x = wx

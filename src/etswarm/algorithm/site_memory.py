@@ -155,6 +155,28 @@ def narrowed(sx, sy, held_i, ox, oy):  # type: ignore[no-untyped-def]
 
 
 @njit
+def narrows_a_neighbour(cx, cy, held_i, ox, oy, gene_flag, ci, outside):  # type: ignore[no-untyped-def]
+    """Taking (cx, cy) would leave a free shape site next to it (as far as ``held_i``
+    tells) without an opening of ``OPENING_SITES`` free neighbour sites, or, when
+    ``outside``, cut off from the outside of the shape. (cx, cy) must lie in the window;
+    ``held_i`` is restored on return."""
+    held_i[cx - ox, cy - oy] = 1
+    shut = False
+    for k in range(6):
+        sx = cx + DIR_X[k]
+        sy = cy + DIR_Y[k]
+        if gene_at(gene_flag, ci, sx, sy) != 1 or is_held(held_i, sx, sy, ox, oy):
+            continue
+        if narrowed(sx, sy, held_i, ox, oy) or (
+            outside and not reaches_outside(sx, sy, held_i, ox, oy, gene_flag, ci)
+        ):
+            shut = True
+            break
+    held_i[cx - ox, cy - oy] = 0
+    return shut
+
+
+@njit
 def shuts_in(cx, cy, held_i, ox, oy, gene_flag, ci):  # type: ignore[no-untyped-def]
     """Taking site (cx, cy) would shut a free shape site next to it in, as far as the
     memory ``held_i`` tells: the site would be left without an opening of
@@ -166,19 +188,7 @@ def shuts_in(cx, cy, held_i, ox, oy, gene_flag, ci):  # type: ignore[no-untyped-
         return False  # remembered held: the caller rejects it on other grounds
     if not (0 <= cx - ox < held_i.shape[0] and 0 <= cy - oy < held_i.shape[1]):
         return False
-    held_i[cx - ox, cy - oy] = 1
-    shut = False
-    for k in range(6):
-        sx = cx + DIR_X[k]
-        sy = cy + DIR_Y[k]
-        if gene_at(gene_flag, ci, sx, sy) != 1 or is_held(held_i, sx, sy, ox, oy):
-            continue
-        if narrowed(sx, sy, held_i, ox, oy) or not reaches_outside(
-            sx, sy, held_i, ox, oy, gene_flag, ci
-        ):
-            shut = True
-            break
-    held_i[cx - ox, cy - oy] = 0
+    shut = narrows_a_neighbour(cx, cy, held_i, ox, oy, gene_flag, ci, True)
     if shut and not reaches_outside(cx, cy, held_i, ox, oy, gene_flag, ci):
         return False  # already in a closed hole: fill it
     return shut
