@@ -42,7 +42,7 @@ def memory_with_free(gene, free):  # type: ignore[no-untyped-def]
 def test_the_capture_that_closes_the_pocket_is_refused() -> None:
     gene, ci = notched_shape()
     held = memory_with_free(gene, [*POCKET, CLOSING])
-    assert finishes(held.copy(), ORIGIN, ORIGIN, gene, ci)
+    assert finishes(held.copy(), ORIGIN, ORIGIN, gene, ci, *CLOSING)
     assert strands_a_site(CLOSING[0], CLOSING[1], held, ORIGIN, ORIGIN, gene, ci)
     # the memory itself is left as it was
     assert held[CLOSING[0] - ORIGIN, CLOSING[1] - ORIGIN] == 0
@@ -58,7 +58,7 @@ def test_the_deepest_site_of_the_pocket_may_be_taken_first() -> None:
 def test_a_shape_that_is_stuck_already_refuses_nothing() -> None:
     gene, ci = notched_shape()
     held = memory_with_free(gene, POCKET)
-    assert not finishes(held.copy(), ORIGIN, ORIGIN, gene, ci)
+    assert not finishes(held.copy(), ORIGIN, ORIGIN, gene, ci, *CLOSING)
     for x, y in POCKET:
         assert not strands_a_site(x, y, held, ORIGIN, ORIGIN, gene, ci)
 

@@ -86,3 +86,11 @@ def gene_at(grid, ci, x, y):  # type: ignore[no-untyped-def]
 def set_state(i, ri, state, tick):  # type: ignore[no-untyped-def]
     ri[i, R_STATE] = state
     ri[i, R_SINCE] = tick
+
+
+@njit(inline="always")
+def hex_distance(dx, dy):  # type: ignore[no-untyped-def]
+    """Lattice steps between two tags that differ by (dx, dy)."""
+    if (dx >= 0) == (dy >= 0):
+        return max(abs(dx), abs(dy))
+    return abs(dx) + abs(dy)

@@ -19,6 +19,7 @@ from etswarm.algorithm.kernel_util import (
     STOP,
     direction_index,
     gene_at,
+    hex_distance,
     is_placed,
     lattice_distance,
     set_state,
@@ -315,14 +316,6 @@ def second_ring_side(dx, dy):  # type: ignore[no-untyped-def]
         if DIR_X[q] + DIR_X[(q + 1) % 6] == dx and DIR_Y[q] + DIR_Y[(q + 1) % 6] == dy:
             return q
     return -1
-
-
-@njit(inline="always")
-def hex_distance(dx, dy):  # type: ignore[no-untyped-def]
-    """Lattice steps between two tags that differ by (dx, dy)."""
-    if (dx >= 0) == (dy >= 0):
-        return max(abs(dx), abs(dy))
-    return abs(dx) + abs(dy)
 
 
 @njit
