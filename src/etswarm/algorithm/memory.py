@@ -136,7 +136,13 @@ R_MOVED_TICK = R_HOVER_SINCE + 1
 #: A Queued robot of a regenerated target has heard a searcher within ``release_clear_s``
 #: at every evaluation since this tick + 1 (0: it did not at its last one).
 R_CROWDED_SINCE = R_MOVED_TICK + 1
-R_FIELDS = R_CROWDED_SINCE + 1
+#: An electing robot's settled subtree count (``regeneration.settle_count``): the count
+#: it last kept for a quarter of the quiet time, since when (R_SETTLED_SINCE), and 1 +
+#: the tick since which the count has differed from it (R_COUNT_OFF; 0: equal).
+R_SETTLED_COUNT = R_CROWDED_SINCE + 1
+R_SETTLED_SINCE = R_SETTLED_COUNT + 1
+R_COUNT_OFF = R_SETTLED_SINCE + 1
+R_FIELDS = R_COUNT_OFF + 1
 
 PHASE_NORMAL = 0
 PHASE_ELECTING = 1

@@ -38,6 +38,7 @@ from etswarm.algorithm.memory import (
     R_COUNT_SINCE,
     R_EPOCH,
     R_HAS_TAG,
+    R_SETTLED_SINCE,
     R_SILENT0,
     R_SILENT_ADDED,
     R_SILENT_N,
@@ -90,6 +91,7 @@ def add_silent(i, tick, ri, x, y):  # type: ignore[no-untyped-def]
     ri[i, R_SILENT_N] = count + 1
     ri[i, R_SILENT_ADDED] = tick
     ri[i, R_COUNT_SINCE] = tick
+    ri[i, R_SETTLED_SINCE] = tick
     return True
 
 
