@@ -15,11 +15,12 @@ from and whose capture passes the one-step test, until nothing more can be taken
 capture is refused when the shape could be finished before it and cannot be after it.
 When the shape cannot be finished even before the capture, the lookahead says nothing,
 so a run that is stuck already is not stopped altogether. The playout is greedy: it
-may miss an order that works, and then it refuses nothing. It scans the whole window
-for every site it places, so it runs only when a settled searcher confirms its site
-(once per stop), not on every candidate of a moving one: run on every candidate it cost
+may miss an order that works, and then it refuses nothing. It rescans its region for
+every site it places, so it runs only when a settled searcher confirms its site (once
+per stop), not on every candidate of a moving one: run on every candidate it cost
 bigdisc 85 % of its speed (472x real time against 2924x) and formed 350 of 390 runs
-(13 shapes, seeds 0-29) against 351. The playout is also local (``FILL_RADIUS``).
+(13 shapes, seeds 0-29) against 351. Its region is the sites within ``FILL_RADIUS``
+steps of the candidate.
 
 Arrays: ``held_i`` (WX, WY) uint8, one robot's memory (window origin at tag (ox, oy),
 see ``site_memory``); ``gene_flag`` and ``ci`` as in ``kernel_util.gene_at``.

@@ -218,25 +218,24 @@ def election_rule(i, tick, ri, nb, ci, stop):  # type: ignore[no-untyped-def]
         ri[i, R_REQUEST] = 0
         return
     quiet = ci[C_TICKS_REGEN_QUIET]
+    steady = tick - ri[i, R_COUNT_SINCE] >= quiet  # the count itself unchanged
+    settled = (  # a long election: the settled count held, the count back at it
+        tick - ri[i, R_ELECT_SINCE] >= LONG_ELECTION_SHARE * quiet
+        and tick - ri[i, R_SETTLED_SINCE] >= quiet
+        and ri[i, R_COUNT_OFF] == 0
+    )
     if (
         ri[i, R_REQUEST] == 0
         and ri[i, R_WALK] == WALK_NONE
         and tick - ri[i, R_ELECT_SINCE] >= quiet
         and tick - ri[i, R_BEST_SINCE] >= quiet
-        and (
-            tick - ri[i, R_COUNT_SINCE] >= quiet
-            or (
-                tick - ri[i, R_ELECT_SINCE] >= LONG_ELECTION_SHARE * quiet
-                and tick - ri[i, R_SETTLED_SINCE] >= quiet
-                and ri[i, R_COUNT_OFF] == 0
-            )
-        )
+        and (steady or settled)
     ):
         set_state(i, ri, LEADER, tick)
         if ci[C_CENSUS_WALK] == 1:
             ri[i, R_WALK] = WALK_START  # census_walk.walk_rule takes over
             return
-        ri[i, R_CENSUS] = sub if tick - ri[i, R_COUNT_SINCE] >= quiet else ri[i, R_SETTLED_COUNT]
+        ri[i, R_CENSUS] = sub if steady else ri[i, R_SETTLED_COUNT]
         ri[i, R_WALK_END] = tick
         ri[i, R_WALK_RESULT] = RESULT_TREE
         ri[i, R_REQUEST] = 1
