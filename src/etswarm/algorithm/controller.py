@@ -84,6 +84,7 @@ from etswarm.algorithm.messages import (
     HOLD_UNIT_TICKS,
     KIND_MASK,
     MSG_ELECT,
+    MSG_HELD,
     MSG_SILENT,
     MSG_STATUS,
     MSG_TARGET,
@@ -91,6 +92,7 @@ from etswarm.algorithm.messages import (
 )
 from etswarm.algorithm.params import (
     C_EVAL_EVERY,
+    C_GOSSIP_EVERY,
     C_STILL_READINGS,
     C_TICKS_CLEAR,
     C_TICKS_NB_FRESH,
@@ -106,11 +108,18 @@ from etswarm.algorithm.regeneration import (
 from etswarm.algorithm.release import queued_rule
 from etswarm.algorithm.search import search_rule
 from etswarm.algorithm.silent import encode_silent, ingest_silent, note_silent, sends_silent
+from etswarm.algorithm.site_memory import encode_held, gossip_due, merge_held
 from etswarm.sim.borrow import borrowed
 from etswarm.sim.prefetch import prefetch
 
 #: The table rows of the busy robot this many places ahead are asked for (``et_part``).
 BUSY_AHEAD = 4
+
+#: Ticks of one gossip window: the default transmit period (``SimParams.tx_period``), so
+#: that about one transmission in ``held_gossip_every`` carries a memory chunk.
+GOSSIP_PERIOD_TICKS = 15
+#: Placed robots that are not Stable send a memory chunk this many times less often.
+FRONT_GOSSIP_SHARE = 4
 
 #: Added to ``ingest``'s answer for a status message that changed its row (see there).
 CHANGED = 8
@@ -200,6 +209,20 @@ def average_reading(i, slot, last_mean, last_count, most, nb, nb_dist):  # type:
 
 
 @njit(inline="always")
+def note_reading(i, k, tick, in_data, in_dist, nb, nb_dist):  # type: ignore[no-untyped-def]
+    """Take message k of robot i's inbox (one that carries no status) as a fresh distance
+    reading of its sender when the sender has a row in i's table; True if it had one."""
+    sender = np.int64(in_data[i, k, 0]) | (np.int64(in_data[i, k, 1]) << 8)
+    for m in range(nb.shape[1]):
+        if nb[i, m, NB_ID] == sender:
+            nb[i, m, NB_LAST] = tick
+            nb_dist[i, m] = in_dist[i, k]
+            nb[i, m, NB_READINGS] = 1
+            return True
+    return False
+
+
+@njit(inline="always")
 def ingest(i, k, tick, ri, in_type, in_data, in_dist, nb, nb_dist, ci):  # type: ignore[no-untyped-def]
     """Store message k of robot i's inbox in its neighbour table (layouts in ``messages``).
 
@@ -209,6 +232,8 @@ def ingest(i, k, tick, ri, in_type, in_data, in_dist, nb, nb_dist, ci):  # type:
     when it is newer than the one kept.
     """
     kind = np.int64(in_type[i, k]) & KIND_MASK
+    if kind == MSG_HELD:
+        return kind  # no status, no row of its own (``note_reading``, ``merge_held``)
     sender = np.int64(in_data[i, k, 0]) | (np.int64(in_data[i, k, 1]) << 8)
     slot = table_slot(i, sender, nb)
     created = slot < 0
@@ -461,6 +486,11 @@ def et_part(  # type: ignore[no-untyped-def]
                 if np.int64(in_data[i, k, 2]) & 0x0F == LEADER:
                     ri[i, R_WALK_SEEN] = tick
                 wake = 0
+            elif kind == MSG_HELD:
+                # a chunk of a placed robot's memory of held sites: a reading of a robot
+                # in the table, nothing that wakes a sleeping robot
+                merge_held(i, k, ri, in_type, in_data, held)
+                new_msgs = note_reading(i, k, tick, in_data, in_dist, nb, nb_dist) or new_msgs
             else:
                 wake = 0
                 if kind == MSG_ELECT:
@@ -532,7 +562,25 @@ def et_part(  # type: ignore[no-untyped-def]
         if ri[i, R_STATE] != SEARCH:
             motor[i] = STOP
         led[i] = ri[i, R_STATE]
+        # Stable robots gossip every ``held_gossip_every`` periods, the others (the growth
+        # front) a quarter as often: a free site's neighbours are never Stable, and the
+        # status messages searchers localise by keep most of their rate. A chunk is
+        # written at the robot's first evaluation in its window and kept for the window.
+        gossiping = False
+        gossip_every = ci[C_GOSSIP_EVERY]
+        if gossip_every > 0 and INACTIVE <= ri[i, R_STATE] <= STABLE:
+            if ri[i, R_STATE] != STABLE:
+                gossip_every *= FRONT_GOSSIP_SHARE
+            gossiping = gossip_due(tick, gossip_every, GOSSIP_PERIOD_TICKS)
+        if gossiping and out_type[i] & KIND_MASK == MSG_HELD:
+            continue  # the chunk of this window is written already
         encode(i, tick, ri, out_on, out_type, out_data)
+        if gossiping and out_type[i] & KIND_MASK == MSG_STATUS:  # not while relaying a target
+            slot = ri[i, R_TSLOT]
+            encode_held(
+                i, tick, gossip_every, GOSSIP_PERIOD_TICKS, ri, nb, held,
+                slot_info[slot, SLOT_WX], slot_info[slot, SLOT_WY], out_type, out_data,
+            )
 
 
 @njit

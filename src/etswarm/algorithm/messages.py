@@ -37,6 +37,12 @@ Silent-sites message (kind 4; electing robots that know of placed robots that fe
 silent, every third period instead of their election message, see ``silent``): 0-1 robot
 ID, 2 tags that follow (1-3), 3-8 up to three tags (int8 X, Y each); the epoch elected for
 is in the type byte as for an election.
+Held-sites message (kind 5; placed robots, every ``held_gossip_every`` periods instead of
+their status, see ``site_memory``): 0-1 robot ID, 2 chunk index c, 3-8 the 48 sites
+c * 48 .. c * 48 + 47 of the sender's held-site memory (row-major over the memory window of
+its target; bit b of byte 3 + b // 8 for site c * 48 + b); the epoch is in the type byte as
+for a status. A receiver that has the sender in its table takes the message's distance as
+a fresh reading of it, so neighbour counts and localisation lose no readings.
 
 The release count floods as a maximum among Queued robots, so the repository releases
 no more robots than the target needs. ``messages`` holds only constants and
@@ -53,10 +59,13 @@ MSG_STATUS = 1
 MSG_ELECT = 2
 MSG_TARGET = 3
 MSG_SILENT = 4
+MSG_HELD = 5
 KIND_MASK = 0x07
 EPOCH_SHIFT = 3
 
 PAYLOAD_BYTES = 9
+#: Sites of the held-site memory per held-sites message (bytes 3-8).
+CHUNK_SITES = 48
 
 #: Byte 6 of a searcher's status: it hears a stationary robot; it yields to a searcher.
 ANCHORED_BIT = 1

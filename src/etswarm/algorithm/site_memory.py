@@ -15,6 +15,15 @@ is cleared when the robot starts searching for a new target epoch (``R_HELD_EPOC
 Placed robots do not leave their sites within an epoch, so what was heard stays true
 until damage, and damage starts a new epoch. ``site_taken`` is the narrower knowledge of
 the neighbour table alone (robots heard lately and the sites they report held).
+
+With ``held_gossip_every`` > 0 placed robots keep their memory once they have taken a site
+and pass it on (``encode_held``, ``merge_held``): every few transmit periods a placed robot
+sends one 48-site chunk of it, with its own tag marked, and every robot of the same epoch
+that hears the chunk adds it to its own memory. Held sites only accumulate within an
+epoch, so the memories converge on the shape's held sites, hop by hop, well beyond what any
+one searcher hears. Where the lattice has bent far enough that two growth fronts would
+carry the same tag out of each other's earshot, the second front learns that the tag is
+held before it takes it.
 """
 
 from __future__ import annotations
@@ -33,7 +42,10 @@ from etswarm.algorithm.memory import (
     NB_TY,
     R_EPOCH,
     R_HELD_EPOCH,
+    R_TAG_X,
+    R_TAG_Y,
 )
+from etswarm.algorithm.messages import CHUNK_SITES, EPOCH_SHIFT, MSG_HELD
 
 #: A free site must keep this many consecutive free neighbour sites to stay reachable
 #: by a robot that keeps about d from every placed robot.
@@ -76,28 +88,105 @@ def is_held(held_i, x, y, ox, oy):  # type: ignore[no-untyped-def]
     return False
 
 
+@njit(inline="always")
+def memory_of_epoch(i, ri, held):  # type: ignore[no-untyped-def]
+    """Robot i's memory ``held[i]`` ((WX, WY) uint8) for its current target epoch: a
+    memory kept for another epoch is cleared first."""
+    held_i = held[i]
+    if ri[i, R_HELD_EPOCH] != ri[i, R_EPOCH] + 1:
+        held_i[:, :] = 0
+        ri[i, R_HELD_EPOCH] = ri[i, R_EPOCH] + 1
+    return held_i
+
+
+@njit
+def merge_held(i, k, ri, in_type, in_data, held):  # type: ignore[no-untyped-def]
+    """File held-sites message k of robot i's inbox (layout in ``messages``): when it was
+    sent for robot i's target epoch, add its sites to i's memory."""
+    if (np.int64(in_type[i, k]) >> EPOCH_SHIFT) != (ri[i, R_EPOCH] & 31):
+        return
+    held_i = memory_of_epoch(i, ri, held)
+    wy_n = held_i.shape[1]
+    size = held_i.shape[0] * wy_n
+    base = np.int64(in_data[i, k, 2]) * CHUNK_SITES
+    for byte in range(CHUNK_SITES // 8):
+        bits = np.int64(in_data[i, k, 3 + byte])
+        if bits == 0:
+            continue
+        for b in range(8):
+            site = base + 8 * byte + b
+            if (bits >> b) & 1 and site < size:
+                held_i[site // wy_n, site % wy_n] = 1
+
+
+@njit(inline="always")
+def gossip_due(tick, every, period):  # type: ignore[no-untyped-def]
+    """A placed robot sends a chunk of its memory during every ``every``-th window of
+    ``period`` ticks (one transmit period) instead of its status (``every`` 0: never)."""
+    if every <= 0:
+        return False
+    return (tick // period) % every == every - 1
+
+
+@njit
+def encode_held(i, tick, every, period, ri, nb, held, ox, oy, out_type, out_data):  # type: ignore[no-untyped-def]
+    """Write a held-sites message of placed robot i (layout in ``messages``) into its
+    outgoing buffers, after marking in its memory its own tag and what its table tells of
+    its placed neighbours (``(ox, oy)``: its target's window origin). The chunk sent turns
+    with the gossip windows (``gossip_due``) and skips chunks with no site held, so a
+    memory of a few held sites spreads as fast as a full one."""
+    held_i = memory_of_epoch(i, ri, held)
+    mark(held_i, ri[i, R_TAG_X], ri[i, R_TAG_Y], ox, oy)
+    for m in range(nb.shape[1]):
+        mark_row(held_i, i, m, ri[i, R_EPOCH], nb, ox, oy)  # its neighbours, the front
+    flat = held_i.reshape(held_i.size)
+    size = flat.size
+    # the chunk index is one byte: a window of more sites passes on its first 256 chunks
+    n_chunks = min((size + CHUNK_SITES - 1) // CHUNK_SITES, 256)
+    start = (tick // (period * every) + i) % n_chunks
+    out_type[i] = MSG_HELD | ((ri[i, R_EPOCH] & 31) << EPOCH_SHIFT)
+    for step in range(n_chunks):
+        chunk = (start + step) % n_chunks
+        base = chunk * CHUNK_SITES
+        if not flat[base:min(base + CHUNK_SITES, size)].any():
+            continue
+        for byte in range(CHUNK_SITES // 8):
+            bits = 0
+            for b in range(8):
+                site = base + 8 * byte + b
+                if site < size and flat[site]:
+                    bits |= 1 << b
+            out_data[i, 3 + byte] = bits
+        out_data[i, 2] = chunk
+        return
+    out_data[i, 2] = start  # nothing held in the window (its tag lies outside it)
+    out_data[i, 3:] = 0
+
+
+@njit(inline="always")
+def mark_row(held_i, i, m, epoch, nb, ox, oy):  # type: ignore[no-untyped-def]
+    """Mark in ``held_i`` the tag of the robot in row m of robot i's table and the
+    neighbour sites its status reports held, when it is placed and works for ``epoch``."""
+    if nb[i, m, NB_ID] < 0 or not is_placed(nb[i, m, NB_STATE]) or nb[i, m, NB_EPOCH] != epoch:
+        return
+    x = nb[i, m, NB_TX]
+    y = nb[i, m, NB_TY]
+    mark(held_i, x, y, ox, oy)
+    bits = nb[i, m, NB_MASK]
+    for k in range(6):
+        if (bits >> k) & 1:
+            mark(held_i, x + DIR_X[k], y + DIR_Y[k], ox, oy)
+
+
 @njit
 def remember_heard(i, tick, ri, nb, held, ox, oy):  # type: ignore[no-untyped-def]
     """Add to robot i's memory the placed robots of its target epoch heard this tick:
     their tags and the neighbour sites their status reports held. A memory of another
     epoch is cleared first."""
-    epoch = ri[i, R_EPOCH]
-    held_i = held[i]
-    if ri[i, R_HELD_EPOCH] != epoch + 1:
-        held_i[:, :] = 0
-        ri[i, R_HELD_EPOCH] = epoch + 1
+    held_i = memory_of_epoch(i, ri, held)
     for m in range(nb.shape[1]):
-        if nb[i, m, NB_ID] < 0 or nb[i, m, NB_LAST] != tick:
-            continue
-        if not is_placed(nb[i, m, NB_STATE]) or nb[i, m, NB_EPOCH] != epoch:
-            continue
-        x = nb[i, m, NB_TX]
-        y = nb[i, m, NB_TY]
-        mark(held_i, x, y, ox, oy)
-        bits = nb[i, m, NB_MASK]
-        for k in range(6):
-            if (bits >> k) & 1:
-                mark(held_i, x + DIR_X[k], y + DIR_Y[k], ox, oy)
+        if nb[i, m, NB_LAST] == tick:
+            mark_row(held_i, i, m, ri[i, R_EPOCH], nb, ox, oy)
 
 
 @njit
