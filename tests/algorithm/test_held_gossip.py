@@ -21,12 +21,16 @@ EVERY = 6
 PERIOD = 15
 
 
-def send_and_receive(sent: np.ndarray, tick: int, epoch: int = 0) -> np.ndarray:
-    """Robot 0 (placed at tag (0, 0), memory ``sent``) encodes a chunk at ``tick``; robot 1
-    (an empty memory, same ``epoch``) files it. Returns robot 1's memory, (WX, WY)."""
+def send_and_receive(
+    sent: np.ndarray, tick: int, epoch: int = 0, receiver_epoch: int | None = None
+) -> np.ndarray:
+    """Robot 0 (placed at tag (0, 0), memory ``sent``, target ``epoch``) encodes a chunk
+    at ``tick``; robot 1 (an empty memory, ``receiver_epoch``, by default the same) files
+    it. Returns robot 1's memory, (WX, WY)."""
     ri, nb, _ = allocate(2)
-    ri[:, R_EPOCH] = epoch
-    ri[:, R_HELD_EPOCH] = epoch + 1
+    ri[0, R_EPOCH] = epoch
+    ri[1, R_EPOCH] = epoch if receiver_epoch is None else receiver_epoch
+    ri[:, R_HELD_EPOCH] = ri[:, R_EPOCH] + 1
     ri[0, R_TAG_X] = 0
     ri[0, R_TAG_Y] = 0
     held = np.zeros((2, *WINDOW), dtype=np.uint8)
@@ -65,19 +69,8 @@ def test_a_chunk_received_is_the_chunk_sent() -> None:
 
 def test_a_chunk_of_another_epoch_is_not_filed() -> None:
     sent = np.ones(WINDOW, dtype=np.uint8)
-    ri, nb, _ = allocate(2)
-    ri[1, R_EPOCH] = 1
-    ri[1, R_HELD_EPOCH] = 2
-    held = np.zeros((2, *WINDOW), dtype=np.uint8)
-    held[0] = sent
-    out_type = np.zeros(2, dtype=np.uint8)
-    out_data = np.zeros((2, 9), dtype=np.uint8)
-    encode_held(
-        0, 5 * PERIOD, EVERY, PERIOD, ri, nb, held, ORIGIN[0], ORIGIN[1], out_type, out_data
-    )
-    merge_held(1, 0, ri, out_type[:1].reshape(1, 1).repeat(2, axis=0),
-               out_data[:1].reshape(1, 1, 9).repeat(2, axis=0), held)
-    assert held[1].sum() == 0
+    assert send_and_receive(sent, tick=5 * PERIOD, epoch=0).sum() > 0
+    assert send_and_receive(sent, tick=5 * PERIOD, epoch=0, receiver_epoch=1).sum() == 0
 
 
 def test_every_robot_of_a_formed_shape_knows_the_shape() -> None:
