@@ -89,6 +89,7 @@ from etswarm.algorithm.messages import (
     MSG_STATUS,
     MSG_TARGET,
     YIELDING_BIT,
+    get_u16,
 )
 from etswarm.algorithm.params import (
     C_EVAL_EVERY,
@@ -126,12 +127,19 @@ CHANGED = 8
 
 
 @njit(inline="always")
-def table_slot(i, sender, nb):  # type: ignore[no-untyped-def]
-    """Index of ``sender``'s row in robot i's neighbour table; a new robot takes a free
-    row, else the one heard longest ago (returned negated minus one: -(row) - 1)."""
+def table_row(i, sender, nb):  # type: ignore[no-untyped-def]
+    """Index of ``sender``'s row in robot i's neighbour table, -1 if it has none."""
     hit = -1
     for m in range(nb.shape[1] - 1, -1, -1):
         hit = m if nb[i, m, NB_ID] == sender else hit  # the first, found without a branch
+    return hit
+
+
+@njit(inline="always")
+def table_slot(i, sender, nb):  # type: ignore[no-untyped-def]
+    """Index of ``sender``'s row in robot i's neighbour table; a new robot takes a free
+    row, else the one heard longest ago (returned negated minus one: -(row) - 1)."""
+    hit = table_row(i, sender, nb)
     if hit >= 0:
         return hit
     free = -1
@@ -212,14 +220,13 @@ def average_reading(i, slot, last_mean, last_count, most, nb, nb_dist):  # type:
 def note_reading(i, k, tick, in_data, in_dist, nb, nb_dist):  # type: ignore[no-untyped-def]
     """Take message k of robot i's inbox (one that carries no status) as a fresh distance
     reading of its sender when the sender has a row in i's table; True if it had one."""
-    sender = np.int64(in_data[i, k, 0]) | (np.int64(in_data[i, k, 1]) << 8)
-    for m in range(nb.shape[1]):
-        if nb[i, m, NB_ID] == sender:
-            nb[i, m, NB_LAST] = tick
-            nb_dist[i, m] = in_dist[i, k]
-            nb[i, m, NB_READINGS] = 1
-            return True
-    return False
+    m = table_row(i, get_u16(in_data[i, k], 0), nb)
+    if m < 0:
+        return False
+    nb[i, m, NB_LAST] = tick
+    nb_dist[i, m] = in_dist[i, k]
+    nb[i, m, NB_READINGS] = 1
+    return True
 
 
 @njit(inline="always")

@@ -142,9 +142,7 @@ R_CROWDED_SINCE = R_MOVED_TICK + 1
 R_SETTLED_COUNT = R_CROWDED_SINCE + 1
 R_SETTLED_SINCE = R_SETTLED_COUNT + 1
 R_COUNT_OFF = R_SETTLED_SINCE + 1
-#: The chunk of its held-site memory a placed robot sent last (``site_memory.gossip``).
-R_GOSSIP_CHUNK = R_COUNT_OFF + 1
-R_FIELDS = R_GOSSIP_CHUNK + 1
+R_FIELDS = R_COUNT_OFF + 1
 
 PHASE_NORMAL = 0
 PHASE_ELECTING = 1
