@@ -8,7 +8,13 @@ import numpy as np
 import pytest
 
 from etswarm.algorithm.memory import R_EPOCH, R_HELD_EPOCH, R_TAG_X, R_TAG_Y, allocate
-from etswarm.algorithm.messages import CHUNK_SITES, EPOCH_SHIFT, KIND_MASK, MSG_HELD
+from etswarm.algorithm.messages import (
+    CHUNK_SITES,
+    EPOCH_SHIFT,
+    KIND_MASK,
+    MSG_HELD,
+    target_signature,
+)
 from etswarm.algorithm.params import ETParams
 from etswarm.algorithm.run import ETRun, RunConfig
 from etswarm.algorithm.site_memory import encode_held, merge_held
@@ -21,12 +27,20 @@ EVERY = 6
 PERIOD = 15
 
 
+#: The sender's target: n and placement (tags).
+TARGET = (30, 2, -1)
+
+
 def send_and_receive(
-    sent: np.ndarray, tick: int, epoch: int = 0, receiver_epoch: int | None = None
+    sent: np.ndarray,
+    tick: int,
+    epoch: int = 0,
+    receiver_epoch: int | None = None,
+    receiver_target: tuple[int, int, int] = TARGET,
 ) -> np.ndarray:
-    """Robot 0 (placed at tag (0, 0), memory ``sent``, target ``epoch``) encodes a chunk
-    at ``tick``; robot 1 (an empty memory, ``receiver_epoch``, by default the same) files
-    it. Returns robot 1's memory, (WX, WY)."""
+    """Robot 0 (placed at tag (0, 0), memory ``sent``, target ``epoch`` and ``TARGET``)
+    encodes a chunk at ``tick``; robot 1 (an empty memory, ``receiver_epoch``, by default
+    the same, and ``receiver_target``) files it. Returns robot 1's memory, (WX, WY)."""
     ri, nb, _ = allocate(2)
     ri[0, R_EPOCH] = epoch
     ri[1, R_EPOCH] = epoch if receiver_epoch is None else receiver_epoch
@@ -37,12 +51,13 @@ def send_and_receive(
     held[0] = sent
     out_type = np.zeros(2, dtype=np.uint8)
     out_data = np.zeros((2, 9), dtype=np.uint8)
-    encode_held(0, tick, EVERY, PERIOD, ri, nb, held, ORIGIN[0], ORIGIN[1], out_type, out_data)
+    encode_held(0, tick, EVERY, PERIOD, ri, nb, held, ORIGIN[0], ORIGIN[1],
+                target_signature(*TARGET), out_type, out_data)
     assert out_type[0] & KIND_MASK == MSG_HELD
     assert out_type[0] >> EPOCH_SHIFT == epoch & 31
     in_type = out_type[:1].reshape(1, 1).repeat(2, axis=0)
     in_data = out_data[:1].reshape(1, 1, 9).repeat(2, axis=0)
-    merge_held(1, 0, ri, in_type, in_data, held)
+    merge_held(1, 0, ri, in_type, in_data, held, target_signature(*receiver_target))
     return held[1]
 
 
@@ -71,6 +86,28 @@ def test_a_chunk_of_another_epoch_is_not_filed() -> None:
     sent = np.ones(WINDOW, dtype=np.uint8)
     assert send_and_receive(sent, tick=5 * PERIOD, epoch=0).sum() > 0
     assert send_and_receive(sent, tick=5 * PERIOD, epoch=0, receiver_epoch=1).sum() == 0
+
+
+def test_a_chunk_for_another_remnants_target_is_not_filed() -> None:
+    """Two remnants of one split elect for the same epoch, each with its own target (n and
+    placement) and so its own memory window: chunks do not cross between them."""
+    sent = np.ones(WINDOW, dtype=np.uint8)
+    n, tx, ty = TARGET
+    for other in ((n - 1, tx, ty), (n, tx + 1, ty), (n, tx, ty - 3), (n + 12, tx - 5, ty)):
+        assert send_and_receive(sent, tick=5 * PERIOD, receiver_target=other).sum() == 0
+
+
+def test_target_signatures_tell_targets_apart() -> None:
+    """Over the targets of remnants of 6-60 cells placed within 10 tags of each other,
+    hardly two share a signature."""
+    targets = [(n, tx, ty) for n in range(6, 61) for tx in range(-10, 11) for ty in range(-10, 11)]
+    signatures = np.array([target_signature(*t) for t in targets])
+    counts = np.bincount(signatures, minlength=256)
+    mean = len(targets) / 256  # about 95: a random spread stays within 4 SD of it
+    assert counts.min() > mean - 4 * mean**0.5 and counts.max() < mean + 4 * mean**0.5
+    neighbours = sum(target_signature(n, tx, ty) == target_signature(n, tx + 1, ty)
+                     for n, tx, ty in targets)
+    assert neighbours < 0.01 * len(targets)
 
 
 def test_every_robot_of_a_formed_shape_knows_the_shape() -> None:

@@ -75,6 +75,9 @@ from etswarm.algorithm.memory import (
     R_WALK_SEEN,
     R_YIELD_SINCE,
     SLOT_LIMIT,
+    SLOT_N,
+    SLOT_TX,
+    SLOT_TY,
     SLOT_WX,
     SLOT_WY,
 )
@@ -90,6 +93,7 @@ from etswarm.algorithm.messages import (
     MSG_TARGET,
     YIELDING_BIT,
     get_u16,
+    target_signature,
 )
 from etswarm.algorithm.params import (
     C_EVAL_EVERY,
@@ -496,7 +500,11 @@ def et_part(  # type: ignore[no-untyped-def]
             elif kind == MSG_HELD:
                 # a chunk of a placed robot's memory of held sites: a reading of a robot
                 # in the table, nothing that wakes a sleeping robot
-                merge_held(i, k, ri, in_type, in_data, held)
+                own = ri[i, R_TSLOT]
+                signature = target_signature(
+                    slot_info[own, SLOT_N], slot_info[own, SLOT_TX], slot_info[own, SLOT_TY]
+                )
+                merge_held(i, k, ri, in_type, in_data, held, signature)
                 new_msgs = note_reading(i, k, tick, in_data, in_dist, nb, nb_dist) or new_msgs
             else:
                 wake = 0
@@ -584,9 +592,13 @@ def et_part(  # type: ignore[no-untyped-def]
         encode(i, tick, ri, out_on, out_type, out_data)
         if gossiping and out_type[i] & KIND_MASK == MSG_STATUS:  # not while relaying a target
             slot = ri[i, R_TSLOT]
+            signature = target_signature(
+                slot_info[slot, SLOT_N], slot_info[slot, SLOT_TX], slot_info[slot, SLOT_TY]
+            )
             encode_held(
                 i, tick, gossip_every, GOSSIP_PERIOD_TICKS, ri, nb, held,
-                slot_info[slot, SLOT_WX], slot_info[slot, SLOT_WY], out_type, out_data,
+                slot_info[slot, SLOT_WX], slot_info[slot, SLOT_WY], signature, out_type,
+                out_data,
             )
 
 

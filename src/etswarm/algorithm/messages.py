@@ -38,10 +38,13 @@ silent, every third period instead of their election message, see ``silent``): 0
 ID, 2 tags that follow (1-3), 3-8 up to three tags (int8 X, Y each); the epoch elected for
 is in the type byte as for an election.
 Held-sites message (kind 5; placed robots, every ``held_gossip_every`` periods instead of
-their status, see ``site_memory``): 0-1 robot ID, 2 chunk index c, 3-8 the 48 sites
-c * 48 .. c * 48 + 47 of the sender's held-site memory (row-major over the memory window of
-its target; bit b of byte 3 + b // 8 for site c * 48 + b); the epoch is in the type byte as
-for a status. A receiver that has the sender in its table takes the message's distance as
+their status, see ``site_memory``): 0-1 robot ID, 2 chunk index c, 3 the signature of
+the sender's target (``target_signature`` of its n and placement), 4-8 the 40 sites
+c * 40 .. c * 40 + 39 of the sender's held-site memory (row-major over the memory window of
+its target; bit b of byte 4 + b // 8 for site c * 40 + b); the epoch is in the type byte as
+for a status. Two remnants of one damage both elect for the same epoch, each with its own
+target and memory window: the signature keeps one remnant's chunks out of the other's
+memories. A receiver that has the sender in its table takes the message's distance as
 a fresh reading of it, so neighbour counts and localisation lose no readings.
 
 The release count floods as a maximum among Queued robots, so the repository releases
@@ -64,8 +67,10 @@ KIND_MASK = 0x07
 EPOCH_SHIFT = 3
 
 PAYLOAD_BYTES = 9
-#: Sites of the held-site memory per held-sites message (bytes 3-8).
-CHUNK_SITES = 48
+#: Sites of the held-site memory per held-sites message (bytes 4-8).
+CHUNK_SITES = 40
+#: First byte of those sites; byte 3 is the target's signature.
+CHUNK_FIRST_BYTE = 4
 
 #: Byte 6 of a searcher's status: it hears a stationary robot; it yields to a searcher.
 ANCHORED_BIT = 1
@@ -98,3 +103,15 @@ def get_i8(buf, offset):  # type: ignore[no-untyped-def]
     """Read a signed byte from ``buf[offset]``."""
     v = int(buf[offset])
     return v - 256 if v >= 128 else v
+
+
+@njit(inline="always")
+def target_signature(n, tx, ty):  # type: ignore[no-untyped-def]
+    """One byte that tells targets apart: of the cell count ``n`` of scale(bitmap, n) and
+    its placement ``(tx, ty)`` (tags), as every robot of a remnant learnt them from its
+    Leader's target message. Two targets that differ get different signatures but for
+    one pair in 256."""
+    h = (n & 0xFFFF) * 0x9E37 + (tx & 0xFF) * 0x85EB + (ty & 0xFF) * 0xC2B3
+    h ^= h >> 11
+    h = (h * 0x2C1B) & 0xFFFFFF
+    return (h ^ (h >> 8) ^ (h >> 16)) & 0xFF

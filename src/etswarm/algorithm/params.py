@@ -240,7 +240,7 @@ class ETParams:
     lost_yield: str = "on"
     #: Placed robots keep the searchers' memory of held sites too and pass it on: every
     #: this many transmit periods a Stable robot (the growth front four times less often)
-    #: sends one 48-site chunk of it instead of its status (``site_memory``, message kind
+    #: sends one 40-site chunk of it instead of its status (``site_memory``, message kind
     #: 5), and every robot of its epoch that hears it adds the chunk to its own; needs
     #: ``hole_memory`` on. A searcher then knows sites held far out of its
     #: earshot and does not take them a second time where the lattice has bent. 0: off,

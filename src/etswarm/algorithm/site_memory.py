@@ -18,7 +18,7 @@ the neighbour table alone (robots heard lately and the sites they report held).
 
 With ``held_gossip_every`` > 0 placed robots keep their memory once they have taken a site
 and pass it on (``encode_held``, ``merge_held``): every few transmit periods a placed robot
-sends one 48-site chunk of it, with its own tag marked, and every robot of the same epoch
+sends one 40-site chunk of it, with its own tag marked, and every robot of the same epoch
 that hears the chunk adds it to its own memory. Held sites only accumulate within an
 epoch, so the memories converge on the shape's held sites, hop by hop, well beyond what any
 one searcher hears. Where the lattice has bent far enough that two growth fronts would
@@ -45,7 +45,7 @@ from etswarm.algorithm.memory import (
     R_TAG_X,
     R_TAG_Y,
 )
-from etswarm.algorithm.messages import CHUNK_SITES, EPOCH_SHIFT, MSG_HELD
+from etswarm.algorithm.messages import CHUNK_FIRST_BYTE, CHUNK_SITES, EPOCH_SHIFT, MSG_HELD
 
 #: A free site must keep this many consecutive free neighbour sites to stay reachable
 #: by a robot that keeps about d from every placed robot.
@@ -100,17 +100,20 @@ def memory_of_epoch(i, ri, held):  # type: ignore[no-untyped-def]
 
 
 @njit
-def merge_held(i, k, ri, in_type, in_data, held):  # type: ignore[no-untyped-def]
+def merge_held(i, k, ri, in_type, in_data, held, signature):  # type: ignore[no-untyped-def]
     """File held-sites message k of robot i's inbox (layout in ``messages``): when it was
-    sent for robot i's target epoch, add its sites to i's memory."""
+    sent for robot i's target (its epoch, and ``signature``, ``target_signature`` of i's
+    target), add its sites to i's memory."""
     if (np.int64(in_type[i, k]) >> EPOCH_SHIFT) != (ri[i, R_EPOCH] & 31):
         return
+    if np.int64(in_data[i, k, 3]) != signature:
+        return  # another remnant's target, over another memory window
     held_i = memory_of_epoch(i, ri, held)
     wy_n = held_i.shape[1]
     size = held_i.shape[0] * wy_n
     base = np.int64(in_data[i, k, 2]) * CHUNK_SITES
     for byte in range(CHUNK_SITES // 8):
-        bits = np.int64(in_data[i, k, 3 + byte])
+        bits = np.int64(in_data[i, k, CHUNK_FIRST_BYTE + byte])
         if bits == 0:
             continue
         for b in range(8):
@@ -129,10 +132,11 @@ def gossip_due(tick, every, period):  # type: ignore[no-untyped-def]
 
 
 @njit
-def encode_held(i, tick, every, period, ri, nb, held, ox, oy, out_type, out_data):  # type: ignore[no-untyped-def]
+def encode_held(i, tick, every, period, ri, nb, held, ox, oy, signature, out_type, out_data):  # type: ignore[no-untyped-def]
     """Write a held-sites message of placed robot i (layout in ``messages``) into its
     outgoing buffers, after marking in its memory its own tag and what its table tells of
-    its placed neighbours (``(ox, oy)``: its target's window origin). The chunk sent turns
+    its placed neighbours (``(ox, oy)``: its target's window origin; ``signature``: its
+    target's ``target_signature``). The chunk sent turns
     with the gossip windows (``gossip_due``) and skips chunks with no site held, so a
     memory of a few held sites spreads as fast as a full one."""
     held_i = memory_of_epoch(i, ri, held)
@@ -145,6 +149,7 @@ def encode_held(i, tick, every, period, ri, nb, held, ox, oy, out_type, out_data
     n_chunks = min((size + CHUNK_SITES - 1) // CHUNK_SITES, 256)
     start = (tick // (period * every) + i) % n_chunks
     out_type[i] = MSG_HELD | ((ri[i, R_EPOCH] & 31) << EPOCH_SHIFT)
+    out_data[i, 3] = signature
     for step in range(n_chunks):
         chunk = (start + step) % n_chunks
         base = chunk * CHUNK_SITES
@@ -156,11 +161,11 @@ def encode_held(i, tick, every, period, ri, nb, held, ox, oy, out_type, out_data
                 site = base + 8 * byte + b
                 if site < size and flat[site]:
                     bits |= 1 << b
-            out_data[i, 3 + byte] = bits
+            out_data[i, CHUNK_FIRST_BYTE + byte] = bits
         out_data[i, 2] = chunk
         return
     out_data[i, 2] = start  # nothing held in the window (its tag lies outside it)
-    out_data[i, 3:] = 0
+    out_data[i, CHUNK_FIRST_BYTE:] = 0
 
 
 @njit(inline="always")
