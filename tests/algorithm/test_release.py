@@ -11,9 +11,11 @@ from etswarm.algorithm.memory import (
     NB_HOPS,
     NB_ID,
     NB_LAST,
+    NB_QRANK,
     NB_STATE,
     R_EPOCH,
     R_QMIN_SINCE,
+    R_QRANK,
     R_SHAPE_HOPS,
     R_STATE,
     allocate,
@@ -136,3 +138,50 @@ def test_a_clear_evaluation_restarts_the_crowded_wait() -> None:
     assert not crowded_long(0, again, ri, ci, False)
     assert not crowded_long(0, again + 2 * wait // 3, ri, ci, False)
     assert crowded_long(0, again + wait, ri, ci, False)
+
+
+def broken_queue(wait_s: float):  # type: ignore[no-untyped-def]
+    """First formation, a queue sorted by ID: robot 12 (rank 12, learnt from robot 11
+    behind it) and robot 13 ahead of it. Robot 11 has been pushed out of earshot while
+    still Queued: robot 12 now hears no lower ID."""
+    ri, nb, _ = allocate(14)
+    ri[:, R_QMIN_SINCE] = 0
+    hear(nb, 12, 0, 11, State.QUEUED, HOPS_NONE, epoch=0)
+    nb[12, 0, NB_QRANK] = 11
+    hear(nb, 12, 1, 13, State.QUEUED, HOPS_NONE, epoch=0)
+    nb[12, 1, NB_QRANK] = 13
+    ci, _ = ETParams(queue_rank_wait_s=wait_s).pack(31, 0, 0)
+    queued_rule(12, TICK, ri, nb, ci, 100)  # it learns its rank while 11 is heard
+    assert ri[12, R_QRANK] == 12 and ri[12, R_STATE] == State.QUEUED
+    nb[12, 0, NB_LAST] = TICK - 10 * 31 * 60  # robot 11's entry has long gone stale
+    return ri, nb, ci
+
+
+def evaluate_until(ri, nb, ci, end: int) -> int | None:  # type: ignore[no-untyped-def]
+    """Evaluate robot 12 every second from TICK + 1 s to ``end``; the tick it left, or None."""
+    for tick in range(TICK + 31, end, 31):
+        queued_rule(12, tick, ri, nb, ci, 100)
+        if ri[12, R_STATE] == State.SEARCH:
+            return tick
+    return None
+
+
+def test_a_queue_broken_near_the_shape_waits_for_the_robot_behind() -> None:
+    ri, nb, ci = broken_queue(600.0)
+    # The piece of queue beyond the break does not take 12 for the queue's end ...
+    assert evaluate_until(ri, nb, ci, TICK + 300 * 31) is None
+    # ... until robot 11, released at last, comes by as a searcher (rank 11).
+    hear(nb, 12, 2, 11, State.SEARCH, HOPS_NONE, epoch=0)
+    nb[12, 2, NB_QRANK] = 11
+    nb[12, 2, NB_LAST] = TICK + 300 * 31
+    left = evaluate_until(ri, nb, ci, TICK + 400 * 31)
+    assert left is not None and left >= TICK + 300 * 31 + round(ETParams().release_clear_s * 31)
+
+
+def test_a_queue_broken_near_the_shape_leaves_when_releases_stop() -> None:
+    ri, nb, ci = broken_queue(600.0)
+    left = evaluate_until(ri, nb, ci, TICK + 900 * 31)
+    assert left is not None and TICK + 599 * 31 <= left <= TICK + 660 * 31
+    # The paper's rule (wait 0) lets it go at once.
+    ri, nb, ci = broken_queue(0.0)
+    assert evaluate_until(ri, nb, ci, TICK + 30 * 31) is not None

@@ -40,6 +40,7 @@ from etswarm.algorithm.memory import (
     NB_LAST,
     NB_MASK,
     NB_PREV,
+    NB_QRANK,
     NB_READINGS,
     NB_RELEASED,
     NB_STATE,
@@ -63,6 +64,7 @@ from etswarm.algorithm.memory import (
     R_PEND_TY,
     R_PHASE,
     R_QMIN,
+    R_QRANK,
     R_RELEASED,
     R_SHAPE_HOPS,
     R_STATE,
@@ -312,6 +314,7 @@ def ingest(i, k, tick, ri, in_type, in_data, in_dist, nb, nb_dist, ci):  # type:
         nb[i, slot, NB_MASK] = np.int64(in_data[i, k, 7])
     else:
         nb[i, slot, NB_RELEASED] = np.int64(in_data[i, k, 7]) | (np.int64(in_data[i, k, 8]) << 8)
+        nb[i, slot, NB_QRANK] = np.int64(in_data[i, k, 3]) | (np.int64(in_data[i, k, 4]) << 8)
         nb[i, slot, NB_HOPS] = np.int64(in_data[i, k, 5])
         nb[i, slot, NB_ANCHORED] = np.int64(in_data[i, k, 6])
     return kind + CHANGED if changed else kind
@@ -323,9 +326,10 @@ def idle_wake(i, k, tick, wake, ri, in_data, ci):  # type: ignore[no-untyped-def
     """A sleeping Queued robot's wake tick (``wake``, see ``release.queued_rule``) after it
     filed status message k of its inbox, which changed nothing of its row but the time and
     the contents (else it wakes: 0). Its next evaluation could decide otherwise when the
-    message brings a higher released count or a lower Queued ID than the lowest it
-    heard; hearing the lowest again keeps that entry fresh for longer, and a searcher
-    heard by the robot that is lowest itself restarts its wait for a clear repository.
+    message brings a higher released count, a lower Queued ID than the lowest it heard,
+    or a lower-ID Queued robot's queue rank that raises its own (``release``); hearing
+    the lowest again keeps that entry fresh for longer, and a searcher heard by the robot
+    that is lowest itself restarts its wait for a clear repository.
     (The robot's ``R_QMIN``, ``R_RELEASED`` and epoch do not change while it sleeps.)
     A placed robot sleeps only till its next due tick, when it evaluates whatever it heard.
     """
@@ -344,6 +348,8 @@ def idle_wake(i, k, tick, wake, ri, in_data, ci):  # type: ignore[no-untyped-def
     sender = np.int64(in_data[i, k, 0]) | (np.int64(in_data[i, k, 1]) << 8)
     if sender < qmin:
         return 0
+    if sender < i and get_u16(in_data[i, k], 3) + 1 > ri[i, R_QRANK]:
+        return 0  # its rank grows
     if sender == qmin:
         return tick + ci[C_TICKS_NB_FRESH] + 1
     return wake
@@ -395,8 +401,8 @@ def encode(i, tick, ri, out_on, out_type, out_data):  # type: ignore[no-untyped-
         out_data[i, 7] = ri[i, R_MASK] & 0x3F
         out_data[i, 8] = ri[i, R_EPOCH] & 0xFF
     else:
-        out_data[i, 3] = ri[i, R_QMIN] & 0xFF
-        out_data[i, 4] = (ri[i, R_QMIN] >> 8) & 0xFF
+        out_data[i, 3] = ri[i, R_QRANK] & 0xFF
+        out_data[i, 4] = (ri[i, R_QRANK] >> 8) & 0xFF
         out_data[i, 5] = min(ri[i, R_SHAPE_HOPS], 255)
         if state == SEARCH:
             anchored = ANCHORED_BIT if ri[i, R_LOST_SINCE] == 0 else 0

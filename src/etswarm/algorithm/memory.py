@@ -142,7 +142,16 @@ R_CROWDED_SINCE = R_MOVED_TICK + 1
 R_SETTLED_COUNT = R_CROWDED_SINCE + 1
 R_SETTLED_SINCE = R_SETTLED_COUNT + 1
 R_COUNT_OFF = R_SETTLED_SINCE + 1
-R_FIELDS = R_COUNT_OFF + 1
+#: A Queued robot's rank in the first formation's repository: the most Queued robots of
+#: lower ID it has learnt stand behind it in a chain (``release``, never lowered), and
+#: the highest rank it heard a searcher carry (the rank that robot had when it left).
+R_QRANK = R_COUNT_OFF + 1
+R_FLOOR_RANK = R_QRANK + 1
+#: The tick a Queued robot last learnt of a release: a higher released count or a
+#: searcher of a higher rank than any before (searchers carry the count of their release
+#: time only, so past a break in the queue the count stands still while releases go on).
+R_RANK_NEWS = R_FLOOR_RANK + 1
+R_FIELDS = R_RANK_NEWS + 1
 
 PHASE_NORMAL = 0
 PHASE_ELECTING = 1
@@ -158,6 +167,7 @@ NB_LAST = 3  # tick last heard
 NB_TX = 4
 NB_TY = 5
 NB_TS = 6
+NB_QRANK = NB_TS  # a Queued or searching robot's queue rank (bytes 3-4 of its status)
 NB_RELEASED = 7  # a Queued or searching robot's count of robots released
 NB_MASK = 8  # a placed robot's neighbour-occupancy bits
 NB_EEPOCH = 9  # election: epoch being elected for (-1: no election message heard)

@@ -46,7 +46,8 @@ C_STILL_READINGS = 30  # a still robot averages up to this many readings of a st
 C_TICKS_CROWDED = 31  # after damage, a Queued robot crowded by searchers this long leaves anyway
 C_FILL_LOOKAHEAD = 32  # 1: a capture must not leave the shape unfinishable (``fill_order``)
 C_GOSSIP_EVERY = 33  # placed robots send a chunk of their held-site memory every this many periods
-N_CI = 34
+C_TICKS_RANK_WAIT = 34  # a Queued robot waits for its queue rank at most this long (0: off)
+N_CI = 35
 
 F_SPACING = 0  # lattice spacing d
 F_PAIR_TOL = 1  # two references within this of d trigger a site candidate
@@ -79,7 +80,7 @@ NON_NEGATIVE: frozenset[str] = frozenset(
     {
         "pair_aim_relax_s", "settle_retries", "regrowth_settle_retries", "release_hold_s",
         "regrowth_hover_s", "regrowth_crowded_s", "regrowth_dive_mm",
-        "dive_mm", "held_gossip_every",
+        "dive_mm", "held_gossip_every", "queue_rank_wait_s",
     }
 )
 #: Parameters that may take any sign.
@@ -248,6 +249,14 @@ class ETParams:
     #: benchmark shapes formed 909 of 1040 runs with 6 against 930 without, and middle
     #: splits re-formed less often (docs/algorithm.md, "Passing on the memory").
     held_gossip_every: int = 0
+    #: First formation: a Queued robot that is the lowest ID it hears leaves only once a
+    #: searcher that stood just behind it in the repository (the next lower queue rank)
+    #: has passed it, or when no release has been heard of for this long. Searchers
+    #: shove the repository's robots apart, and a long queue breaks near the shape; the
+    #: piece beyond the break, between it and the shape, then took its lowest ID for the
+    #: queue's end and left robot by robot, and every searcher coming along the queue was
+    #: lost in the gap (``release``). 0: the paper's rule, the lowest ID heard leaves.
+    queue_rank_wait_s: float = 600.0
 
     def __post_init__(self) -> None:
         for f in fields(self):
@@ -320,6 +329,7 @@ class ETParams:
         ci[C_HOLE_MEMORY] = 1 if self.hole_memory == "on" else 0
         ci[C_FILL_LOOKAHEAD] = 1 if self.fill_lookahead == "on" else 0
         ci[C_GOSSIP_EVERY] = self.held_gossip_every if self.hole_memory == "on" else 0
+        ci[C_TICKS_RANK_WAIT] = ticks(self.queue_rank_wait_s) if self.queue_rank_wait_s > 0 else 0
         ci[C_POCKET] = 1 if self.pocket == "on" else 0
         ci[C_QUEUE_STRIDE] = 1 if self.queue_stride == "on" else 0
         ci[C_SILENT_SITES] = 1 if self.silent_sites == "on" else 0

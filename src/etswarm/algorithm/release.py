@@ -30,15 +30,19 @@ from etswarm.algorithm.memory import (
     NB_HOPS,
     NB_ID,
     NB_LAST,
+    NB_QRANK,
     NB_RELEASED,
     NB_STATE,
     R_CROWDED_SINCE,
     R_EPOCH,
     R_FLOOR,
+    R_FLOOR_RANK,
     R_FLOOR_SINCE,
     R_HOLD_UNTIL,
     R_QMIN,
     R_QMIN_SINCE,
+    R_QRANK,
+    R_RANK_NEWS,
     R_RELEASED,
     R_SHAPE_HOPS,
 )
@@ -50,6 +54,7 @@ from etswarm.algorithm.params import (
     C_TICKS_HOLD,
     C_TICKS_NB_FRESH,
     C_TICKS_QUIET,
+    C_TICKS_RANK_WAIT,
     C_TICKS_RELEASE,
 )
 from etswarm.algorithm.search import begin_search
@@ -132,6 +137,9 @@ def queued_rule(i, tick, ri, nb, ci, limit):  # type: ignore[no-untyped-def]
     hold_ticks = ci[C_TICKS_HOLD]
     hold = ri[i, R_HOLD_UNTIL]
     lowest_last = 0  # tick the lowest Queued robot heard was last heard
+    ranked = epoch == 0 and ci[C_TICKS_RANK_WAIT] > 0
+    rank = ri[i, R_QRANK]
+    floor_rank = ri[i, R_FLOOR_RANK]
     for m in range(nb.shape[1]):
         sid = nb[i, m, NB_ID]
         if sid < 0 or nb[i, m, NB_EPOCH] != epoch:
@@ -139,6 +147,7 @@ def queued_rule(i, tick, ri, nb, ci, limit):  # type: ignore[no-untyped-def]
         st = nb[i, m, NB_STATE]
         if st == SEARCH:
             last_searcher = max(last_searcher, nb[i, m, NB_LAST])
+            floor_rank = max(floor_rank, nb[i, m, NB_QRANK])
         if tick - nb[i, m, NB_LAST] > fresh or st > SEARCH:
             continue
         released = max(released, nb[i, m, NB_RELEASED])
@@ -152,6 +161,8 @@ def queued_rule(i, tick, ri, nb, ci, limit):  # type: ignore[no-untyped-def]
                 hold = max(hold, nb[i, m, NB_LAST] + (byte6 - 1) * HOLD_UNIT_TICKS)
         if st != QUEUED:
             continue
+        if sid < i:
+            rank = max(rank, nb[i, m, NB_QRANK] + 1)
         if far_first:
             hops = nb[i, m, NB_HOPS]
             if hops > lowest_hops or (hops == lowest_hops and sid < lowest):
@@ -161,12 +172,21 @@ def queued_rule(i, tick, ri, nb, ci, limit):  # type: ignore[no-untyped-def]
             lowest = sid
             lowest_last = nb[i, m, NB_LAST]
     ri[i, R_HOLD_UNTIL] = hold
+    if floor_rank > ri[i, R_FLOOR_RANK] or released > ri[i, R_RELEASED]:
+        ri[i, R_RANK_NEWS] = tick
+    ri[i, R_QRANK] = rank
+    ri[i, R_FLOOR_RANK] = floor_rank
+    # The robot just behind it in the queue left (a searcher of the next lower rank came
+    # by), or releases have stopped altogether: the queue's end is here.
+    rank_waits = ranked and floor_rank < rank - 1
     if released != ri[i, R_RELEASED]:
         ri[i, R_RELEASED] = released
         ri[i, R_FLOOR_SINCE] = tick
     if lowest != ri[i, R_QMIN]:
         ri[i, R_QMIN] = lowest
         ri[i, R_QMIN_SINCE] = tick
+    # (counted from when it became the lowest, too: news it missed while asleep are old)
+    rank_ends = max(ri[i, R_RANK_NEWS], ri[i, R_QMIN_SINCE]) + ci[C_TICKS_RANK_WAIT]
     clear = tick - last_searcher >= ci[C_TICKS_CLEAR]
     crowded_waits = epoch > 0 and ci[C_TICKS_CROWDED] > 0
     if crowded_waits:
@@ -180,6 +200,7 @@ def queued_rule(i, tick, ri, nb, ci, limit):  # type: ignore[no-untyped-def]
         and tick - ri[i, R_QMIN_SINCE] >= ci[C_TICKS_QUIET]
         and tick - ri[i, R_FLOOR_SINCE] >= ci[C_TICKS_RELEASE]
         and tick >= hold
+        and (not rank_waits or tick >= rank_ends)
     ):
         begin_search(i, tick, ri)
         ri[i, R_FLOOR] = i
@@ -198,4 +219,5 @@ def queued_rule(i, tick, ri, nb, ci, limit):  # type: ignore[no-untyped-def]
         last_searcher + ci[C_TICKS_CLEAR],
         ri[i, R_QMIN_SINCE] + ci[C_TICKS_QUIET],
         ri[i, R_FLOOR_SINCE] + ci[C_TICKS_RELEASE],
+        rank_ends if rank_waits else 0,
     )
