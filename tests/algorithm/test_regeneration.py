@@ -75,10 +75,10 @@ def test_targets_are_drawn_where_the_remnants_are() -> None:
     [("T", "split x=mid", 6), ("arrow", "split y=mid", 2)],
 )
 def test_each_remnant_elects_once_and_regrows(shape: str, damage: str, seed: int) -> None:
-    # (first formations as traced: without diving, dive_mm=0)
+    # (first formations as traced: without diving and held-site gossip)
     config = RunConfig(
         shape=shape, seed=seed, max_time_s=4 * 3600, damage=(damage,),
-        et=ETParams(dive_mm=0.0),
+        et=ETParams(dive_mm=0.0, held_gossip_every=0),
     )
     run = ETRun(config)
     summary = run.run()

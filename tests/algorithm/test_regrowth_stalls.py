@@ -11,7 +11,9 @@ from etswarm.algorithm.params import ETParams
 from etswarm.algorithm.run import ETRun, RunConfig
 
 #: The consistency settings of session 12, which the first formations were traced with.
-TRACED = {"consistency_widen_max": 1.0, "fill_lookahead": "off"}
+# the settings these runs were traced with (before the pinched-mouth default, the lookahead
+# and held-site gossip)
+TRACED = {"consistency_widen_max": 1.0, "fill_lookahead": "off", "held_gossip_every": 0}
 
 
 def split_run(shape: str, damage: str, seed: int, **et: float) -> dict:

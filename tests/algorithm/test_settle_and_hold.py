@@ -158,10 +158,10 @@ def test_bad_values_are_rejected(name: str, value: float) -> None:
 
 @pytest.mark.parametrize("seed", [0, 9])
 def test_t_forms_with_retries_and_hold(seed: int) -> None:
-    # the consistency settings these runs were measured with (session 10)
+    # the consistency settings these runs were measured with (session 10), no gossip
     et = ETParams(
         settle_retries=3, release_hold_s=20.0, consistency_widen_max=1.0,
-        fill_lookahead="off",
+        fill_lookahead="off", held_gossip_every=0,
     )
     run = ETRun(RunConfig(shape="T", seed=seed, max_time_s=3 * 3600, et=et))
     summary = run.run()

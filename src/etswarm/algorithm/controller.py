@@ -235,6 +235,20 @@ def note_reading(i, k, tick, in_data, in_dist, nb, nb_dist):  # type: ignore[no-
     return True
 
 
+@njit
+def file_held(i, k, tick, ri, in_type, in_data, in_dist, nb, nb_dist, held, slot_info):  # type: ignore[no-untyped-def]
+    """File held-sites message k of robot i's inbox: its chunk into i's memory when it is
+    for i's target (``site_memory.merge_held``), its distance as a reading of the sender
+    (``note_reading``, whose answer it returns). Kept out of line: the loop over the
+    inbox of every robot stays small."""
+    own = ri[i, R_TSLOT]
+    signature = target_signature(
+        slot_info[own, SLOT_N], slot_info[own, SLOT_TX], slot_info[own, SLOT_TY]
+    )
+    merge_held(i, k, ri, in_type, in_data, held, signature)
+    return note_reading(i, k, tick, in_data, in_dist, nb, nb_dist)
+
+
 @njit(inline="always")
 def ingest(i, k, tick, ri, in_type, in_data, in_dist, nb, nb_dist, ci):  # type: ignore[no-untyped-def]
     """Store message k of robot i's inbox in its neighbour table (layouts in ``messages``).
@@ -415,6 +429,32 @@ def encode(i, tick, ri, out_on, out_type, out_data):  # type: ignore[no-untyped-
 
 
 @njit
+def encode_placed(i, tick, ri, nb, ci, held, slot_info, out_on, out_type, out_data):  # type: ignore[no-untyped-def]
+    """Write placed robot i's next broadcast with held-site gossip on: a chunk of its
+    memory of held sites instead of its status once every ``held_gossip_every`` transmit
+    periods if Stable, a quarter as often on the growth front (a free site's neighbours are
+    never Stable, and the status messages searchers localise by keep most of their rate);
+    otherwise as ``encode``. A chunk is written at the robot's first evaluation in its
+    window and kept for the window."""
+    every = ci[C_GOSSIP_EVERY]
+    if ri[i, R_STATE] != STABLE:
+        every *= FRONT_GOSSIP_SHARE
+    gossiping = gossip_due(tick, every, GOSSIP_PERIOD_TICKS)
+    if gossiping and out_type[i] & KIND_MASK == MSG_HELD:
+        return  # the chunk of this window is written already
+    encode(i, tick, ri, out_on, out_type, out_data)
+    if gossiping and out_type[i] & KIND_MASK == MSG_STATUS:  # not while relaying a target
+        slot = ri[i, R_TSLOT]
+        signature = target_signature(
+            slot_info[slot, SLOT_N], slot_info[slot, SLOT_TX], slot_info[slot, SLOT_TY]
+        )
+        encode_held(
+            i, tick, every, GOSSIP_PERIOD_TICKS, ri, nb, held, slot_info[slot, SLOT_WX],
+            slot_info[slot, SLOT_WY], signature, out_type, out_data,
+        )
+
+
+@njit
 def busy_robots(lo, hi, tick, alive, in_count, idle, motor):  # type: ignore[no-untyped-def]
     """The robots of ``lo .. hi - 1`` with something to do this tick, in index order: alive,
     and awake (``idle`` <= ``tick``), with messages to file (``in_count`` > 0) or with
@@ -506,12 +546,9 @@ def et_part(  # type: ignore[no-untyped-def]
             elif kind == MSG_HELD:
                 # a chunk of a placed robot's memory of held sites: a reading of a robot
                 # in the table, nothing that wakes a sleeping robot
-                own = ri[i, R_TSLOT]
-                signature = target_signature(
-                    slot_info[own, SLOT_N], slot_info[own, SLOT_TX], slot_info[own, SLOT_TY]
-                )
-                merge_held(i, k, ri, in_type, in_data, held, signature)
-                new_msgs = note_reading(i, k, tick, in_data, in_dist, nb, nb_dist) or new_msgs
+                new_msgs = file_held(
+                    i, k, tick, ri, in_type, in_data, in_dist, nb, nb_dist, held, slot_info
+                ) or new_msgs
             else:
                 wake = 0
                 if kind == MSG_ELECT:
@@ -583,29 +620,10 @@ def et_part(  # type: ignore[no-untyped-def]
         if ri[i, R_STATE] != SEARCH:
             motor[i] = STOP
         led[i] = ri[i, R_STATE]
-        # Stable robots gossip every ``held_gossip_every`` periods, the others (the growth
-        # front) a quarter as often: a free site's neighbours are never Stable, and the
-        # status messages searchers localise by keep most of their rate. A chunk is
-        # written at the robot's first evaluation in its window and kept for the window.
-        gossiping = False
-        gossip_every = ci[C_GOSSIP_EVERY]
-        if gossip_every > 0 and INACTIVE <= ri[i, R_STATE] <= STABLE:
-            if ri[i, R_STATE] != STABLE:
-                gossip_every *= FRONT_GOSSIP_SHARE
-            gossiping = gossip_due(tick, gossip_every, GOSSIP_PERIOD_TICKS)
-        if gossiping and out_type[i] & KIND_MASK == MSG_HELD:
-            continue  # the chunk of this window is written already
-        encode(i, tick, ri, out_on, out_type, out_data)
-        if gossiping and out_type[i] & KIND_MASK == MSG_STATUS:  # not while relaying a target
-            slot = ri[i, R_TSLOT]
-            signature = target_signature(
-                slot_info[slot, SLOT_N], slot_info[slot, SLOT_TX], slot_info[slot, SLOT_TY]
-            )
-            encode_held(
-                i, tick, gossip_every, GOSSIP_PERIOD_TICKS, ri, nb, held,
-                slot_info[slot, SLOT_WX], slot_info[slot, SLOT_WY], signature, out_type,
-                out_data,
-            )
+        if ci[C_GOSSIP_EVERY] > 0 and INACTIVE <= ri[i, R_STATE] <= STABLE:
+            encode_placed(i, tick, ri, nb, ci, held, slot_info, out_on, out_type, out_data)
+        else:
+            encode(i, tick, ri, out_on, out_type, out_data)
 
 
 @njit

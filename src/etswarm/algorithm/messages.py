@@ -9,8 +9,8 @@ byte   placed robot (Inactive ..   Queued / Search robot
 =====  ==========================  ==============================================
 0-1    robot ID (uint16)           robot ID (uint16)
 2      state code (see states)     state code
-3      tag X (int8)                lowest Queued ID heard, low byte
-4      tag Y (int8)                lowest Queued ID heard, high byte
+3      tag X (int8)                queue rank (``release``), low byte
+4      tag Y (int8)                queue rank, high byte
 5-6    timestep TS (uint16)        5: hops to the robots placed on the
                                    target (after a regeneration, see
                                    ``release``; 255 = no way known); 6:
