@@ -7,7 +7,17 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from etswarm.algorithm.memory import R_EPOCH, R_HELD_EPOCH, R_TAG_X, R_TAG_Y, allocate
+from etswarm.algorithm.memory import (
+    R_EPOCH,
+    R_HELD_EPOCH,
+    R_STATE,
+    R_TAG_X,
+    R_TAG_Y,
+    R_TSLOT,
+    SLOT_WX,
+    SLOT_WY,
+    allocate,
+)
 from etswarm.algorithm.messages import (
     CHUNK_SITES,
     EPOCH_SHIFT,
@@ -133,3 +143,38 @@ def test_fewer_tags_held_twice_on_a_bent_lattice() -> None:
         dups[every] = len(run.run()["duplicate_tags"])
     assert dups[0] >= 5, dups
     assert dups[6] <= dups[0] // 4, dups
+
+
+def free_sites_remembered_held(run: ETRun) -> int:
+    """Over every searcher working for a regenerated target: the sites of its target that
+    its memory holds held while no robot of that target holds them."""
+    controller = run.controller
+    ri = controller.ri
+    live = run.world.present & run.world.alive
+    wrong = 0
+    for i in np.flatnonzero(live & (ri[:, R_STATE] == State.SEARCH) & (ri[:, R_EPOCH] > 0)):
+        slot = ri[i, R_TSLOT]
+        cells = {tuple(t) for t in controller.slot_cells[slot].tolist()}
+        placed = live & (ri[:, R_TSLOT] == slot)
+        placed &= (ri[:, R_STATE] >= State.INACTIVE) & (ri[:, R_STATE] <= State.STABLE)
+        held = {tuple(t) for t in controller.tags[placed].tolist()}
+        gx, gy = np.nonzero(controller.held[i])
+        origin = controller.slot_info[slot, [SLOT_WX, SLOT_WY]]
+        remembered = {(int(x + origin[0]), int(y + origin[1])) for x, y in zip(gx, gy, strict=True)}
+        wrong += len((cells - held) & remembered)
+    return wrong
+
+
+def test_remnants_of_one_split_keep_their_chunks_apart() -> None:
+    """H cut through the middle (seed 0): the two lower legs elect for the same epoch, each
+    with its own target. Before chunks carried their target's signature, searchers of one
+    remnant filed the other's chunks over their own memory window and remembered up to 16
+    free sites of their target as held; now none, at every look."""
+    run = ETRun(RunConfig(shape="H", seed=0, max_time_s=4 * 3600, damage=("split y=mid",)))
+    assert run.config.et.held_gossip_every > 0  # on by default
+    looks = 0
+    while run.sim_time_s < 4 * 3600 - 1:
+        run.advance(31 * 300)
+        assert free_sites_remembered_held(run) == 0, run.sim_time_s
+        looks += int(run.controller.ri[:, R_EPOCH].max() > 0)
+    assert looks > 10  # it was damaged early enough to be looked at after
