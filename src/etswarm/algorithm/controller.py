@@ -235,17 +235,21 @@ def note_reading(i, k, tick, in_data, in_dist, nb, nb_dist):  # type: ignore[no-
     return True
 
 
+@njit(inline="always")
+def slot_signature(slot, slot_info):  # type: ignore[no-untyped-def]
+    """``messages.target_signature`` of the target in ``slot`` (its n and placement)."""
+    return target_signature(
+        slot_info[slot, SLOT_N], slot_info[slot, SLOT_TX], slot_info[slot, SLOT_TY]
+    )
+
+
 @njit
 def file_held(i, k, tick, ri, in_type, in_data, in_dist, nb, nb_dist, held, slot_info):  # type: ignore[no-untyped-def]
     """File held-sites message k of robot i's inbox: its chunk into i's memory when it is
     for i's target (``site_memory.merge_held``), its distance as a reading of the sender
     (``note_reading``, whose answer it returns). Kept out of line: the loop over the
     inbox of every robot stays small."""
-    own = ri[i, R_TSLOT]
-    signature = target_signature(
-        slot_info[own, SLOT_N], slot_info[own, SLOT_TX], slot_info[own, SLOT_TY]
-    )
-    merge_held(i, k, ri, in_type, in_data, held, signature)
+    merge_held(i, k, ri, in_type, in_data, held, slot_signature(ri[i, R_TSLOT], slot_info))
     return note_reading(i, k, tick, in_data, in_dist, nb, nb_dist)
 
 
@@ -445,12 +449,9 @@ def encode_placed(i, tick, ri, nb, ci, held, slot_info, out_on, out_type, out_da
     encode(i, tick, ri, out_on, out_type, out_data)
     if gossiping and out_type[i] & KIND_MASK == MSG_STATUS:  # not while relaying a target
         slot = ri[i, R_TSLOT]
-        signature = target_signature(
-            slot_info[slot, SLOT_N], slot_info[slot, SLOT_TX], slot_info[slot, SLOT_TY]
-        )
         encode_held(
             i, tick, every, GOSSIP_PERIOD_TICKS, ri, nb, held, slot_info[slot, SLOT_WX],
-            slot_info[slot, SLOT_WY], signature, out_type, out_data,
+            slot_info[slot, SLOT_WY], slot_signature(slot, slot_info), out_type, out_data,
         )
 
 
