@@ -18,6 +18,7 @@ import numpy as np
 from numba import njit
 
 from etswarm.algorithm.census_walk import sends_tag, walk_rule, walking
+from etswarm.algorithm.extent import encode_extent, ingest_extent, sends_extent
 from etswarm.algorithm.kernel_util import (
     INACTIVE,
     LEADER,
@@ -89,6 +90,7 @@ from etswarm.algorithm.messages import (
     HOLD_UNIT_TICKS,
     KIND_MASK,
     MSG_ELECT,
+    MSG_EXTENT,
     MSG_HELD,
     MSG_SILENT,
     MSG_STATUS,
@@ -300,6 +302,11 @@ def ingest(i, k, tick, ri, in_type, in_data, in_dist, nb, nb_dist, ci):  # type:
         wrapped = np.int64(in_type[i, k]) >> EPOCH_SHIFT
         ingest_silent(i, k, tick, ri, in_data, near_epoch(ri[i, R_EPOCH] + 1, wrapped, 32))
         return kind
+    if kind == MSG_EXTENT:
+        wrapped = np.int64(in_type[i, k]) >> EPOCH_SHIFT
+        elected = near_epoch(ri[i, R_EPOCH] + 1, wrapped, 32)
+        ingest_extent(i, k, tick, ri, in_type, in_data, elected)
+        return kind
     if kind == MSG_TARGET:
         epoch = near_epoch(ri[i, R_EPOCH] + 1, np.int64(in_data[i, k, 2]), 256)
         if epoch > ri[i, R_PEND_EPOCH]:
@@ -385,6 +392,9 @@ def encode(i, tick, ri, out_on, out_type, out_data):  # type: ignore[no-untyped-
     if ri[i, R_PHASE] == PHASE_ELECTING and not ((tick // 15) % 2 and sends_tag(i, tick, ri)):
         if sends_silent(i, tick, ri):
             encode_silent(i, ri, out_type, out_data)
+            return
+        if sends_extent(i, tick, ri):
+            encode_extent(i, ri, out_type, out_data)
             return
         epoch = ri[i, R_EPOCH] + 1
         out_type[i] = MSG_ELECT | ((epoch & 31) << EPOCH_SHIFT)

@@ -19,8 +19,10 @@ from etswarm.algorithm.memory import (
     NB_STATE,
     NB_TX,
     NB_TY,
+    R_EPOCH,
     R_FLOOR_SINCE,
     R_HAS_TAG,
+    R_HELD_EPOCH,
     R_NEWSLOT,
     R_NN,
     R_QMIN_SINCE,
@@ -30,8 +32,11 @@ from etswarm.algorithm.memory import (
     R_TAG_X,
     R_TAG_Y,
     R_TS,
+    R_TSLOT,
     R_WALK,
     SLOT_FIELDS,
+    SLOT_WX,
+    SLOT_WY,
     allocate,
 )
 from etswarm.algorithm.params import ETParams
@@ -184,6 +189,16 @@ class ETController:
             if row[NB_ID] >= 0 and row[NB_STATE] >= State.INACTIVE and row[NB_LAST] >= since_tick:
                 known.add((int(row[NB_TX]), int(row[NB_TY])))
         return known
+
+    def remembered_tags(self, i: int) -> set[tuple[int, int]]:
+        """Tags robot ``i``'s memory of held sites (``site_memory``) holds for the target it
+        works for (empty if its memory is of another epoch)."""
+        if self.ri[i, R_HELD_EPOCH] != self.ri[i, R_EPOCH] + 1:
+            return set()
+        slot = int(self.ri[i, R_TSLOT])
+        ox, oy = int(self.slot_info[slot, SLOT_WX]), int(self.slot_info[slot, SLOT_WY])
+        gx, gy = np.nonzero(self.held[i])
+        return set(zip((gx + ox).tolist(), (gy + oy).tolist(), strict=True))
 
     def answer(self, leader: int, cells: np.ndarray, n: int, tx: int, ty: int) -> int:
         """Give Leader ``leader`` its scaled target (``cells`` already translated)."""

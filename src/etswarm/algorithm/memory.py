@@ -151,7 +151,12 @@ R_FLOOR_RANK = R_QRANK + 1
 #: searcher of a higher rank than any before (searchers carry the count of their release
 #: time only, so past a break in the queue the count stands still while releases go on).
 R_RANK_NEWS = R_FLOOR_RANK + 1
-R_FIELDS = R_RANK_NEWS + 1
+#: While electing: the extent of the remnant's tags heard of so far (``extent``), as the
+#: least and greatest X, Y and X - Y (six fields), and the tick it last grew.
+R_EXT0 = R_RANK_NEWS + 1
+EXTENT_FIELDS = 6
+R_EXT_GREW = R_EXT0 + EXTENT_FIELDS
+R_FIELDS = R_EXT_GREW + 1
 
 PHASE_NORMAL = 0
 PHASE_ELECTING = 1

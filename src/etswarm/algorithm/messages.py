@@ -35,8 +35,9 @@ send their status instead of their election message every other period while a w
 Leader (status with state Leader) has been heard lately, so the walker learns their tags.
 Silent-sites message (kind 4; electing robots that know of placed robots that fell
 silent, every third period instead of their election message, see ``silent``): 0-1 robot
-ID, 2 tags that follow (1-3), 3-8 up to three tags (int8 X, Y each); the epoch elected for
-is in the type byte as for an election.
+ID, 2 tags that follow (1-2), 3-8 up to two tags of three bytes: int8 X, Y and the mask
+of the lattice directions from the site where robots are known to be alive; the epoch
+elected for is in the type byte as for an election.
 Held-sites message (kind 5; placed robots, every ``held_gossip_every`` periods instead of
 their status, see ``site_memory``): 0-1 robot ID, 2 chunk index c, 3 the signature of
 the sender's target (``target_signature`` of its n and placement), 4-8 the 40 sites
@@ -46,6 +47,10 @@ for a status. Two remnants of one damage both elect for the same epoch, each wit
 target and memory window: the signature keeps one remnant's chunks out of the other's
 memories. A receiver that has the sender in its table takes the message's distance as
 a fresh reading of it, so neighbour counts and localisation lose no readings.
+Extent message (kind 6; electing robots, every third period instead of their election
+message for a while after their extent last grew, see ``extent``): 0-1 robot ID, 2-7 the
+least and greatest tag X, Y and X - Y of the remnant heard of so far (int8 each), 8 unused;
+the epoch elected for is in the type byte.
 
 The release count floods as a maximum among Queued robots, so the repository releases
 no more robots than the target needs. ``messages`` holds only constants and
@@ -63,6 +68,7 @@ MSG_ELECT = 2
 MSG_TARGET = 3
 MSG_SILENT = 4
 MSG_HELD = 5
+MSG_EXTENT = 6
 KIND_MASK = 0x07
 EPOCH_SHIFT = 3
 

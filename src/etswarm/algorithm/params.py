@@ -47,7 +47,8 @@ C_TICKS_CROWDED = 31  # after damage, a Queued robot crowded by searchers this l
 C_FILL_LOOKAHEAD = 32  # 1: a capture must not leave the shape unfinishable (``fill_order``)
 C_GOSSIP_EVERY = 33  # placed robots send a chunk of their held-site memory every this many periods
 C_TICKS_RANK_WAIT = 34  # a Queued robot waits for its queue rank at most this long (0: off)
-N_CI = 35
+C_EXTENT = 35  # 1: electing robots flood the remnant's extent for the scaled shape's placement
+N_CI = 36
 
 F_SPACING = 0  # lattice spacing d
 F_PAIR_TOL = 1  # two references within this of d trigger a site candidate
@@ -73,6 +74,8 @@ CENSUS_METHODS = ("tree", "walk")
 #: How searchers go round the group (``ETParams.orbit``): always clockwise (the paper), or
 #: back and forth round the shape, turning back where it meets the repository.
 ORBIT_MODES = ("bounce", "clockwise")
+#: Where a Leader places the scaled shape (``ETParams.placement``).
+PLACEMENTS = ("extent", "local")
 
 
 #: Parameters that may be zero (all others must be positive).
@@ -257,6 +260,16 @@ class ETParams:
     #: queue's end and left robot by robot, and every searcher coming along the queue was
     #: lost in the gap (``release``). 0: the paper's rule, the lowest ID heard leaves.
     queue_rank_wait_s: float = 600.0
+    #: Where the Leader puts the scaled shape (always on its own site and two of its
+    #: neighbours', the new seeds): over as much of the remnant as it can ("extent": while
+    #: electing, robots flood the least and greatest tag the remnant holds along the
+    #: lattice's three axes, and the Leader picks the placement with the most cells inside
+    #: that hexagon, see ``extent``), or keeping as many of the sites it hears held as it
+    #: can ("local": the robots round the Leader only, so a Leader on the remnant's edge
+    #: put most of the shape beside the remnant and sent nearly every robot back to the
+    #: repository). "extent" needs ``held_gossip_every`` > 0; without gossip the Leader
+    #: places as with "local".
+    placement: str = "extent"
 
     def __post_init__(self) -> None:
         for f in fields(self):
@@ -270,6 +283,9 @@ class ETParams:
             ):
                 if value not in ("on", "off"):
                     raise EtswarmError(f"{f.name} must be 'on' or 'off', got {value!r}")
+            elif f.name == "placement":
+                if value not in PLACEMENTS:
+                    raise EtswarmError(f"placement must be one of {PLACEMENTS}, got {value!r}")
             elif f.name == "release_order":
                 if value not in ("far", "id"):
                     raise EtswarmError(f"release_order must be 'far' or 'id', got {value!r}")
@@ -331,6 +347,7 @@ class ETParams:
         ci[C_GOSSIP_EVERY] = self.held_gossip_every if self.hole_memory == "on" else 0
         ci[C_TICKS_RANK_WAIT] = ticks(self.queue_rank_wait_s) if self.queue_rank_wait_s > 0 else 0
         ci[C_POCKET] = 1 if self.pocket == "on" else 0
+        ci[C_EXTENT] = 1 if self.placement == "extent" else 0
         ci[C_QUEUE_STRIDE] = 1 if self.queue_stride == "on" else 0
         ci[C_SILENT_SITES] = 1 if self.silent_sites == "on" else 0
         ci[C_LOST_BEACON] = 1 if self.lost_beacon == "on" else 0

@@ -149,4 +149,4 @@ def placed_rule(i, tick, ri, nb, nb_dist, ci, cf):  # type: ignore[no-untyped-de
         elif ri[i, R_BELOW_SINCE] < 0:
             ri[i, R_BELOW_SINCE] = tick
         elif tick - ri[i, R_BELOW_SINCE] >= ci[C_TICKS_DANGER]:
-            start_election(i, tick, ri)
+            start_election(i, tick, ri, ci)

@@ -26,6 +26,7 @@ from __future__ import annotations
 from numba import njit
 
 from etswarm.algorithm.census_walk import RESULT_NONE, RESULT_TREE, WALK_NONE, WALK_START
+from etswarm.algorithm.extent import reset_extent
 from etswarm.algorithm.kernel_util import (
     ACTIVE,
     DANGER,
@@ -62,6 +63,7 @@ from etswarm.algorithm.memory import (
     R_COUNT_SINCE,
     R_ELECT_SINCE,
     R_EPOCH,
+    R_EXT_GREW,
     R_FLOOR,
     R_FLOOR_SINCE,
     R_HAS_TAG,
@@ -118,7 +120,7 @@ LONG_ELECTION_SHARE = 4
 
 
 @njit
-def start_election(i, tick, ri):  # type: ignore[no-untyped-def]
+def start_election(i, tick, ri, ci):  # type: ignore[no-untyped-def]
     """Robot i joins the election for epoch R_EPOCH + 1 as a candidate of its own."""
     ri[i, R_PHASE] = PHASE_ELECTING
     ri[i, R_LEADER] = i
@@ -136,6 +138,7 @@ def start_election(i, tick, ri):  # type: ignore[no-untyped-def]
     ri[i, R_WALK] = WALK_NONE
     ri[i, R_WALK_RESULT] = RESULT_NONE
     ri[i, R_WALK_END] = -1
+    reset_extent(i, tick, ri, ci)
     set_state(i, ri, DANGER, tick)
 
 
@@ -144,7 +147,7 @@ def join_election(i, tick, ri, ci):  # type: ignore[no-untyped-def]
     """Robot i joins an election it heard of. With census ``walk`` only robots that saw
     the damage themselves stand (paper: the Danger robots elect their Leader), so the
     Leader sits on the damaged edge, from where it can walk out; the others relay."""
-    start_election(i, tick, ri)
+    start_election(i, tick, ri, ci)
     if ci[C_CENSUS_WALK] == 1:
         ri[i, R_CANDIDATE] = 0
         ri[i, R_LEADER] = NO_LEADER
@@ -229,6 +232,7 @@ def election_rule(i, tick, ri, nb, ci, stop):  # type: ignore[no-untyped-def]
         and ri[i, R_WALK] == WALK_NONE
         and tick - ri[i, R_ELECT_SINCE] >= quiet
         and tick - ri[i, R_BEST_SINCE] >= quiet
+        and tick - ri[i, R_EXT_GREW] >= quiet  # the remnant's extent has all come in
         and (steady or settled)
     ):
         set_state(i, ri, LEADER, tick)

@@ -15,6 +15,7 @@ import numpy as np
 
 from etswarm.algorithm.census_walk import RESULT_NAMES
 from etswarm.algorithm.et_controller import ETController
+from etswarm.algorithm.extent import cells_in, extent_of
 from etswarm.algorithm.layout import plan_layout
 from etswarm.algorithm.memory import (
     R_CENSUS,
@@ -27,8 +28,8 @@ from etswarm.algorithm.memory import (
     R_WALK_RESULT,
     R_WALK_TAGS,
 )
-from etswarm.algorithm.params import ETParams
-from etswarm.algorithm.silent import silent_tags
+from etswarm.algorithm.params import C_GOSSIP_EVERY, ETParams
+from etswarm.algorithm.silent import enclosed_tags, silent_tags
 from etswarm.algorithm.states import PLACED_STATES, STATE_NAMES, State
 from etswarm.damage import DamageSpec, apply_damage, parse_damage
 from etswarm.errors import EtswarmError
@@ -247,9 +248,12 @@ class ETRun:
     def _scaled_placement(self, leader: int, n: int) -> tuple[np.ndarray, int, int]:
         """scale(bitmap, n), translated so that it holds the Leader's site and two sites of
         its neighbours that make a seed triangle with it (paper: the Leader and two
-        neighbours are the new seeds), as many other sites the Leader knows to be held as
-        possible and, among those, as few of the sites it knows fell silent (a dead robot
-        may stand there, see ``silent``). Empty when n < 3 (too small to seed)."""
+        neighbours are the new seeds), as many as possible of the sites the Leader
+        remembers held (``site_memory``) inside the remnant's extent it learnt while
+        electing (``extent``), then as many cells inside that extent, then as many sites it
+        knows to be held as possible and, among those, as few of the sites it knows fell
+        silent (a dead robot may stand there, see ``silent``). Empty when n < 3 (too small
+        to seed)."""
         if n < 3:
             return np.zeros((0, 2), dtype=np.int64), 0, 0
         cells = scale(self.shape, min(n, self.shape.n_cells))
@@ -258,13 +262,31 @@ class ETRun:
         # Robots heard since the election began are the remnant's; older entries left.
         known = ctl.known_tags(leader, int(ctl.ri[leader, R_ELECT_SINCE]))
         silent = silent_tags(ctl.ri, leader) - known
+        # silent sites with live robots round them: robots killed or removed inside the
+        # remnant (a dead one still stands there), not cut off along a split's edge
+        old_cells = np.asarray(ctl.slot_cells[int(ctl.ri[leader, R_TSLOT])]).reshape(-1, 2)
+        old_shape = {(int(x), int(y)) for x, y in old_cells.tolist()}
+        enclosed = enclosed_tags(ctl.ri, leader, old_shape) - known
         offsets = [tuple(int(v) for v in o) for o in NEIGHBOUR_OFFSETS]
         triangles = [
             ((lx + a[0], ly + a[1]), (lx + b[0], ly + b[1]))
             for a, b in zip(offsets, offsets[1:] + offsets[:1], strict=True)
             if (lx + a[0], ly + a[1]) in known and (lx + b[0], ly + b[1]) in known
         ]
-        best: tuple[int, int, int, int, int, int] | None = None
+        # The remnant's hexagon of tags, flooded while electing (``extent``), and the sites
+        # in it the Leader remembers held (``site_memory``), less the sites it learnt fell
+        # silent: nobody of the remnant holds those. Only with held-site gossip: without
+        # it only searchers keep a memory, of what they heard on their way, and the
+        # hexagon alone misleads where the remnant does not fill it (bigdisc seed 0, an
+        # election with no damage and the shape half built: it shifted the whole shape
+        # by two sites). None: the local placement.
+        extent = extent_of(ctl.ri, leader) if ctl.ci[C_GOSSIP_EVERY] > 0 else None
+        remnant: set[tuple[int, int]] = set()
+        if extent is not None:
+            remembered = sorted((ctl.remembered_tags(leader) | known) - silent)
+            inside = cells_in(np.array(remembered).reshape(-1, 2), extent)
+            remnant = {t for t, keep in zip(remembered, inside, strict=True) if keep}
+        best: tuple[int, ...] | None = None
         for sx, sy in cells.tolist():
             tx, ty = lx - sx, ly - sy
             moved = cells + np.array([tx, ty])
@@ -274,12 +296,17 @@ class ETRun:
             seeded = any(p in sites and q in sites for p, q in triangles)
             kept = len(sites & known)
             covered = len(sites & silent)
-            key = (0 if seeded else 1, -kept, covered, abs(tx) + abs(ty), tx, ty)
+            on_remnant = len(sites & remnant)
+            within = 0 if extent is None else int(cells_in(moved, extent).sum())
+            key = (
+                0 if seeded else 1, len(sites & enclosed), -on_remnant, -within, -kept,
+                covered, abs(tx) + abs(ty), tx, ty,
+            )
             if best is None or key < best:
                 best = key
         if best is None:
             return cells, 0, 0
-        tx, ty = best[4], best[5]
+        tx, ty = best[-2], best[-1]
         return cells + np.array([tx, ty]), tx, ty
 
     def _group_of(self, robot: int) -> np.ndarray:
