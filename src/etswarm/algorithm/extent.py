@@ -6,9 +6,9 @@ neighbours' (the new seeds). Among those placements it used to keep as many of t
 it heard held as it could, which are only the sites round itself: a Leader on the edge of
 its remnant (the lowest ID, often an old seed) then put most of the new shape beside the
 remnant, and nearly every robot went back to the repository to grow it again from
-scratch. Traced on starfish ``split y=mid`` seed 0: the 42-robot lower remnant kept 3
-robots on sites of its new target, and regrowth stalled with searchers lost round a
-repository of 39.
+scratch. Traced on starfish ``split y=mid`` seed 0: the 49-robot remnant kept 3 robots on
+sites of its new target, and regrowth stalled with searchers lost round a repository of
+46.
 
 So, while electing, every robot keeps the least and greatest tag its remnant holds along
 the lattice's three axes (X, Y and X - Y) as far as it has heard: its own tag if it has
@@ -73,7 +73,8 @@ def _grow(i, tick, ri, axis, least, greatest):  # type: ignore[no-untyped-def]
 @njit
 def reset_extent(i, tick, ri, ci):  # type: ignore[no-untyped-def]
     """Robot i starts electing: its extent is its own tag (empty without one); with the
-    option off it never sends one."""
+    option off (or no held-site gossip, see ``ETParams.pack``) it stays empty and is never
+    sent."""
     for axis in range(EXTENT_FIELDS // 2):
         ri[i, R_EXT0 + 2 * axis] = EMPTY_LEAST
         ri[i, R_EXT0 + 2 * axis + 1] = EMPTY_GREATEST

@@ -347,7 +347,8 @@ class ETParams:
         ci[C_GOSSIP_EVERY] = self.held_gossip_every if self.hole_memory == "on" else 0
         ci[C_TICKS_RANK_WAIT] = ticks(self.queue_rank_wait_s) if self.queue_rank_wait_s > 0 else 0
         ci[C_POCKET] = 1 if self.pocket == "on" else 0
-        ci[C_EXTENT] = 1 if self.placement == "extent" else 0
+        # the placement over the extent counts the sites remembered held: gossip keeps them
+        ci[C_EXTENT] = 1 if self.placement == "extent" and ci[C_GOSSIP_EVERY] > 0 else 0
         ci[C_QUEUE_STRIDE] = 1 if self.queue_stride == "on" else 0
         ci[C_SILENT_SITES] = 1 if self.silent_sites == "on" else 0
         ci[C_LOST_BEACON] = 1 if self.lost_beacon == "on" else 0

@@ -28,7 +28,7 @@ from etswarm.algorithm.memory import (
     R_WALK_RESULT,
     R_WALK_TAGS,
 )
-from etswarm.algorithm.params import C_GOSSIP_EVERY, ETParams
+from etswarm.algorithm.params import ETParams
 from etswarm.algorithm.silent import enclosed_tags, silent_tags
 from etswarm.algorithm.states import PLACED_STATES, STATE_NAMES, State
 from etswarm.damage import DamageSpec, apply_damage, parse_damage
@@ -279,8 +279,9 @@ class ETRun:
         # it only searchers keep a memory, of what they heard on their way, and the
         # hexagon alone misleads where the remnant does not fill it (bigdisc seed 0, an
         # election with no damage and the shape half built: it shifted the whole shape
-        # by two sites). None: the local placement.
-        extent = extent_of(ctl.ri, leader) if ctl.ci[C_GOSSIP_EVERY] > 0 else None
+        # by two sites), so nothing is flooded then (``ETParams.pack``). None: the local
+        # placement.
+        extent = extent_of(ctl.ri, leader)
         remnant: set[tuple[int, int]] = set()
         if extent is not None:
             remembered = sorted((ctl.remembered_tags(leader) | known) - silent)

@@ -22,9 +22,8 @@ Robots that moved out of range (``split``) fall silent too, and covering their s
 no harm: they are free. So every silent site carries the sides of it where robots are
 known to be alive, merged as it floods (``note_silent``); one with five sides or more
 alive or off the shape is enclosed: a dead robot inside the remnant, not a site across a
-cut. The
-Leader keeps the scaled target off enclosed sites first of all, and off the others only to
-break ties.
+cut. The Leader keeps the scaled target off enclosed sites first of all, and off the
+others only to break ties.
 """
 
 from __future__ import annotations
