@@ -10,9 +10,12 @@ from etswarm.algorithm.run import ETRun, RunConfig
 
 #: The settings these runs were traced with (session 12): with the wider consistency
 #: tolerance of session 13 the same seeds form without diving too.
-# the settings these runs were traced with (before the pinched-mouth default, the lookahead
-# and held-site gossip)
-TRACED = {"consistency_widen_max": 1.0, "fill_lookahead": "off", "held_gossip_every": 0}
+# the settings these runs were traced with (before the pinched-mouth default, the lookahead,
+# held-site gossip and site offsets)
+TRACED = {
+    "consistency_widen_max": 1.0, "fill_lookahead": "off", "held_gossip_every": 0,
+    "site_offsets": "off",
+}
 
 
 def formation(shape: str, seed: int, **et: float) -> dict:

@@ -70,7 +70,8 @@ def test_heart_seed_9_forms_only_with_the_lookahead() -> None:
     for lookahead in ("off", "on"):
         config = RunConfig(
             shape="heart", seed=9, max_time_s=4 * 3600.0,
-            et=ETParams(fill_lookahead=lookahead, held_gossip_every=0),  # as traced
+            # as traced
+            et=ETParams(fill_lookahead=lookahead, held_gossip_every=0, site_offsets="off"),
         )
         run = ETRun(config)
         summary = run.run()

@@ -40,6 +40,8 @@ from etswarm.algorithm.memory import (
     NB_ID,
     NB_LAST,
     NB_MASK,
+    NB_OX,
+    NB_OY,
     NB_PREV,
     NB_QRANK,
     NB_READINGS,
@@ -58,6 +60,8 @@ from etswarm.algorithm.memory import (
     R_LOST_SINCE,
     R_MASK,
     R_MOVED_TICK,
+    R_OFF_X,
+    R_OFF_Y,
     R_PARENT,
     R_PEND_EPOCH,
     R_PEND_N,
@@ -99,6 +103,7 @@ from etswarm.algorithm.messages import (
     get_u16,
     target_signature,
 )
+from etswarm.algorithm.offsets import sent_offset
 from etswarm.algorithm.params import (
     C_EVAL_EVERY,
     C_GOSSIP_EVERY,
@@ -335,8 +340,12 @@ def ingest(i, k, tick, ri, in_type, in_data, in_dist, nb, nb_dist, ci):  # type:
         ty = np.int64(in_data[i, k, 4])
         nb[i, slot, NB_TX] = tx - 256 if tx >= 128 else tx
         nb[i, slot, NB_TY] = ty - 256 if ty >= 128 else ty
-        nb[i, slot, NB_TS] = np.int64(in_data[i, k, 5]) | (np.int64(in_data[i, k, 6]) << 8)
+        nb[i, slot, NB_TS] = np.int64(in_data[i, k, 5])
         nb[i, slot, NB_MASK] = np.int64(in_data[i, k, 7])
+        ox = np.int64(in_data[i, k, 6])
+        oy = np.int64(in_data[i, k, 8])
+        nb[i, slot, NB_OX] = ox - 256 if ox >= 128 else ox
+        nb[i, slot, NB_OY] = oy - 256 if oy >= 128 else oy
     else:
         nb[i, slot, NB_RELEASED] = np.int64(in_data[i, k, 7]) | (np.int64(in_data[i, k, 8]) << 8)
         nb[i, slot, NB_QRANK] = np.int64(in_data[i, k, 3]) | (np.int64(in_data[i, k, 4]) << 8)
@@ -424,10 +433,10 @@ def encode(i, tick, ri, out_on, out_type, out_data):  # type: ignore[no-untyped-
     if state >= INACTIVE:
         out_data[i, 3] = ri[i, R_TAG_X] & 0xFF
         out_data[i, 4] = ri[i, R_TAG_Y] & 0xFF
-        out_data[i, 5] = ri[i, R_TS] & 0xFF
-        out_data[i, 6] = (ri[i, R_TS] >> 8) & 0xFF
+        out_data[i, 5] = min(ri[i, R_TS], 255)
+        out_data[i, 6] = sent_offset(ri[i, R_OFF_X]) & 0xFF
         out_data[i, 7] = ri[i, R_MASK] & 0x3F
-        out_data[i, 8] = ri[i, R_EPOCH] & 0xFF
+        out_data[i, 8] = sent_offset(ri[i, R_OFF_Y]) & 0xFF
     else:
         out_data[i, 3] = ri[i, R_QRANK] & 0xFF
         out_data[i, 4] = (ri[i, R_QRANK] >> 8) & 0xFF

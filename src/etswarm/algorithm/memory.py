@@ -156,7 +156,15 @@ R_RANK_NEWS = R_FLOOR_RANK + 1
 R_EXT0 = R_RANK_NEWS + 1
 EXTENT_FIELDS = 6
 R_EXT_GREW = R_EXT0 + EXTENT_FIELDS
-R_FIELDS = R_EXT_GREW + 1
+#: A placed robot's estimate of where it stands from its site's centre (``offsets``), in
+#: units of ``offsets.FINE_PER_MM`` along the gene frame's x and y; 1 while it still
+#: refines that estimate (from taking its site until it is Stable); the tick of the
+#: newest reading it refined by.
+R_OFF_X = R_EXT_GREW + 1
+R_OFF_Y = R_OFF_X + 1
+R_OFF_REFINE = R_OFF_Y + 1
+R_OFF_TICK = R_OFF_REFINE + 1
+R_FIELDS = R_OFF_TICK + 1
 
 PHASE_NORMAL = 0
 PHASE_ELECTING = 1
@@ -185,7 +193,9 @@ NB_EPOCH = 15  # the target epoch the robot works for (from its status message's
 NB_HOPS = 16  # a Queued robot's hops to the target's placed robots (``release``)
 NB_ANCHORED = 17  # byte 6 of a Queued or searching robot's status (see ``messages``)
 NB_READINGS = 18  # readings averaged into nb_dist (both robots still since the first)
-NB_FIELDS = 19
+NB_OX = 19  # a placed robot's offset from its site's centre (``offsets``), x and y
+NB_OY = 20
+NB_FIELDS = 21
 
 SLOT_N = 0  # cells of the target
 SLOT_LIMIT = 1  # robots the repository releases for it

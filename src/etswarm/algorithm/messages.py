@@ -11,19 +11,19 @@ byte   placed robot (Inactive ..   Queued / Search robot
 2      state code (see states)     state code
 3      tag X (int8)                queue rank (``release``), low byte
 4      tag Y (int8)                queue rank, high byte
-5-6    timestep TS (uint16)        5: hops to the robots placed on the
-                                   target (after a regeneration, see
-                                   ``release``; 255 = no way known); 6:
-                                   a searcher's bits: ANCHORED_BIT when
-                                   it hears a stationary robot,
-                                   YIELDING_BIT while it yields to
+5      timestep TS (uint8,         hops to the robots placed on the
+       255 at most)                target (after a regeneration, see
+                                   ``release``; 255 = no way known)
+6      offset x from the site's    a searcher's bits: ANCHORED_BIT when
+       centre (int8, units of      it hears a stationary robot,
+       0.5 mm, see ``offsets``)    YIELDING_BIT while it yields to
                                    another searcher; a Queued robot's
                                    release hold left (units of
                                    HOLD_UNIT_TICKS, see ``release``)
 7      neighbour-site bits (bit k  robots released so far, low byte
        = a robot holds the site in
        lattice direction k)
-8      target epoch (uint8)        robots released so far, high byte
+8      offset y (int8, 0.5 mm)     robots released so far, high byte
 =====  ==========================  ==============================================
 
 Election message (kind 2; Danger and Leader robots): bytes 0-1 robot ID, 2-3 lowest ID
@@ -51,6 +51,9 @@ Extent message (kind 6; electing robots, every third period instead of their ele
 message for a while after their extent last grew, see ``extent``): 0-1 robot ID, 2-7 the
 least and greatest tag X, Y and X - Y of the remnant heard of so far (int8 each), 8 unused;
 the epoch elected for is in the type byte.
+
+The target epoch a status belongs to is in its type byte (mod 32). TS is the paper's
+gradient, a few tens at most on the library's shapes (39 on bigdisc), so one byte holds it.
 
 The release count floods as a maximum among Queued robots, so the repository releases
 no more robots than the target needs. ``messages`` holds only constants and

@@ -48,7 +48,8 @@ C_FILL_LOOKAHEAD = 32  # 1: a capture must not leave the shape unfinishable (``f
 C_GOSSIP_EVERY = 33  # placed robots send a chunk of their held-site memory every this many periods
 C_TICKS_RANK_WAIT = 34  # a Queued robot waits for its queue rank at most this long (0: off)
 C_EXTENT = 35  # 1: electing robots flood the remnant's extent for the scaled shape's placement
-N_CI = 36
+C_OFFSETS = 36  # 1: placed robots estimate and send their offset from their site (``offsets``)
+N_CI = 37
 
 F_SPACING = 0  # lattice spacing d
 F_PAIR_TOL = 1  # two references within this of d trigger a site candidate
@@ -67,7 +68,8 @@ F_SETTLE_SCALE = 13  # a settled searcher confirms its site with windows this ma
 F_WIDEN_TICKS = 14  # ticks at the shape over which a searcher's tolerances widen to widen_max
 F_DIVE = 15  # after damage, a searcher long at the shape edge-follows up to this much nearer (mm)
 F_DIVE_FIRST = 16  # in the first formation, the same once a searcher has been widen_s at the shape
-N_CF = 17
+F_OFFSET_TRUST = 17  # share of a placed robot's offset a searcher's expected readings follow
+N_CF = 18
 
 #: Census methods (``ETParams.census``): the paper's periphery walk, or a spanning tree.
 CENSUS_METHODS = ("tree", "walk")
@@ -270,6 +272,16 @@ class ETParams:
     #: repository). "extent" needs ``held_gossip_every`` > 0; without gossip the Leader
     #: places as with "local".
     placement: str = "extent"
+    #: "on": a robot that takes a site estimates how far off its centre it stands and
+    #: sends that offset; searchers aim at sites' true centres from where the placed
+    #: robots really stand (``offsets``). "off": every placed robot is taken to stand on
+    #: its site's centre (the paper's localisation), and placement errors add up.
+    site_offsets: str = "on"
+    #: With ``site_offsets`` on, a searcher expects to read a placed robot this share of
+    #: the way from the lattice distance (0) to the distance from where that robot really
+    #: stands (1). All the way aims every robot at its site's true centre, which a robot
+    #: standing off its own site may have made too narrow to reach.
+    offset_trust: float = 0.5
 
     def __post_init__(self) -> None:
         for f in fields(self):
@@ -279,7 +291,7 @@ class ETParams:
                     raise EtswarmError(f"census must be one of {CENSUS_METHODS}, got {value!r}")
             elif f.name in (
                 "creep", "second_ring", "hole_memory", "fill_lookahead", "pocket", "queue_stride",
-                "silent_sites", "lost_beacon", "lost_yield",
+                "silent_sites", "lost_beacon", "lost_yield", "site_offsets",
             ):
                 if value not in ("on", "off"):
                     raise EtswarmError(f"{f.name} must be 'on' or 'off', got {value!r}")
@@ -292,6 +304,9 @@ class ETParams:
             elif f.name == "orbit":
                 if value not in ORBIT_MODES:
                     raise EtswarmError(f"orbit must be one of {ORBIT_MODES}, got {value!r}")
+            elif f.name == "offset_trust":
+                if not 0 <= value <= 1:
+                    raise EtswarmError(f"ET parameter offset_trust must be in [0, 1], got {value}")
             elif f.name in SIGNED:
                 continue
             elif f.name in ("widen_max", "consistency_widen_max", "settle_tol_scale"):
@@ -349,6 +364,7 @@ class ETParams:
         ci[C_POCKET] = 1 if self.pocket == "on" else 0
         # the placement over the extent counts the sites remembered held: gossip keeps them
         ci[C_EXTENT] = 1 if self.placement == "extent" and ci[C_GOSSIP_EVERY] > 0 else 0
+        ci[C_OFFSETS] = 1 if self.site_offsets == "on" else 0
         ci[C_QUEUE_STRIDE] = 1 if self.queue_stride == "on" else 0
         ci[C_SILENT_SITES] = 1 if self.silent_sites == "on" else 0
         ci[C_LOST_BEACON] = 1 if self.lost_beacon == "on" else 0
@@ -378,6 +394,7 @@ class ETParams:
         cf[F_DIVE_FIRST] = self.dive_mm
         cf[F_BALANCE_TOL] = self.balance_tol_mm
         cf[F_WALK_COLLECT] = self.census_collect_mm
+        cf[F_OFFSET_TRUST] = self.offset_trust
         return ci, cf
 
 

@@ -30,6 +30,7 @@ from etswarm.algorithm.memory import (
     R_EPOCH,
     R_MASK,
     R_NN,
+    R_OFF_REFINE,
     R_QUASI_UNTIL,
     R_SINCE,
     R_STATE,
@@ -37,10 +38,12 @@ from etswarm.algorithm.memory import (
     R_TAG_Y,
     R_TS,
 )
+from etswarm.algorithm.offsets import refine_offset
 from etswarm.algorithm.params import (
     C_TICKS_DANGER,
     C_TICKS_NB_FRESH,
     C_TICKS_QUASI,
+    F_SPACING,
 )
 from etswarm.algorithm.regeneration import start_election
 
@@ -125,6 +128,10 @@ def placed_rule(i, tick, ri, nb, nb_dist, ci, cf):  # type: ignore[no-untyped-de
         count = bit_count(seen_dirs | reported_dirs(i, tick, ri, nb, fresh, seen_dirs))
     ri[i, R_COUNT] = count
     ri[i, R_MASK] = seen_dirs
+    if state == STABLE:
+        ri[i, R_OFF_REFINE] = 0  # its neighbours are all placed: it stands where it is
+    else:
+        refine_offset(i, tick, nb, nb_dist, ri, cf[F_SPACING])
 
     if state == INACTIVE:
         if witnessed_stable:

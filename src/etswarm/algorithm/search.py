@@ -21,7 +21,6 @@ from etswarm.algorithm.kernel_util import (
     gene_at,
     hex_distance,
     is_placed,
-    lattice_distance,
     set_state,
 )
 from etswarm.algorithm.memory import (
@@ -71,12 +70,14 @@ from etswarm.algorithm.memory import (
     SUB_SETTLE,
 )
 from etswarm.algorithm.messages import ANCHORED_BIT
+from etswarm.algorithm.offsets import estimate_offset, expected_distance
 from etswarm.algorithm.params import (
     C_CREEP,
     C_FILL_LOOKAHEAD,
     C_HOLE_MEMORY,
     C_LOST_BEACON,
     C_LOST_YIELD,
+    C_OFFSETS,
     C_ORBIT_BOUNCE,
     C_POCKET,
     C_QUEUE_STRIDE,
@@ -114,6 +115,10 @@ from etswarm.algorithm.site_memory import is_held, remember_heard, shuts_in, sit
 #: hearing its neighbours goes to Danger (radio range 70 mm for d = 40 mm).
 ADJACENT_SLACK_MM = 20.0
 
+#: With site offsets on, a reference is considered for the pair window when its reading
+#: is within the pair tolerance plus this (mm) of the window's centre; the window itself
+#: is tested on readings corrected for where the references stand (``offsets``).
+OFFSET_PREFILTER_MM = 25.0
 #: Readings of a searching robot older than this (ticks) are ignored for steering.
 SEARCHER_FRESH_TICKS = 31
 #: A free site must keep this many consecutive free neighbour sites to stay reachable.
@@ -428,19 +433,23 @@ def find_site(  # type: ignore[no-untyped-def]
     best_x = 0
     best_y = 0
     best_ts = 0
+    # With site offsets a reference's expected reading is not d but its distance from the
+    # site's centre; the window is tested on readings corrected by the difference.
+    offsets_on = ci[C_OFFSETS] == 1
+    pre_tol = pair_tol + OFFSET_PREFILTER_MM if offsets_on else pair_tol
     for a in range(slots):
         if nb[i, a, NB_ID] < 0 or not is_placed(nb[i, a, NB_STATE]):
             continue
-        if nb[i, a, NB_LAST] < since or abs(nb_dist[i, a] - pair_aim) > pair_tol:
+        if nb[i, a, NB_LAST] < since or abs(nb_dist[i, a] - pair_aim) > pre_tol:
             continue
         ax = nb[i, a, NB_TX]
         ay = nb[i, a, NB_TY]
         for b in range(a + 1, slots):
             if nb[i, b, NB_ID] < 0 or not is_placed(nb[i, b, NB_STATE]):
                 continue
-            if nb[i, b, NB_LAST] < since or abs(nb_dist[i, b] - pair_aim) > pair_tol:
+            if nb[i, b, NB_LAST] < since or abs(nb_dist[i, b] - pair_aim) > pre_tol:
                 continue
-            if not in_window(nb_dist[i, a], nb_dist[i, b], pair_aim, cf, scale):
+            if not offsets_on and not in_window(nb_dist[i, a], nb_dist[i, b], pair_aim, cf, scale):
                 # Settle midway between the two references, not where the window opens.
                 continue
             dx = nb[i, b, NB_TX] - ax
@@ -477,6 +486,13 @@ def find_site(  # type: ignore[no-untyped-def]
                 c2y = ay + DIR_Y[k2]
                 if gene_at(gene_flag, ci, cx, cy) != 1 or site_taken(i, cx, cy, nb):
                     continue
+                dist_a = nb_dist[i, a]
+                dist_b = nb_dist[i, b]
+                if offsets_on:
+                    dist_a += d - expected_distance(i, a, cx, cy, nb, ci, cf)
+                    dist_b += d - expected_distance(i, b, cx, cy, nb, ci, cf)
+                    if not in_window(dist_a, dist_b, pair_aim, cf, scale):
+                        continue
                 if hole_memory and is_held(held_i, cx, cy, ox, oy):
                     continue  # heard held before: its holder is elsewhere, the lattice torn
                 # Keep the free sites reachable from outside; in a hole that is closed
@@ -497,7 +513,7 @@ def find_site(  # type: ignore[no-untyped-def]
                         continue
                     jx = nb[i, j, NB_TX]
                     jy = nb[i, j, NB_TY]
-                    pred = lattice_distance(cx, cy, jx, jy) * d
+                    pred = expected_distance(i, j, cx, cy, nb, ci, cf)
                     if nb[i, j, NB_LAST] >= since:
                         e = abs(nb_dist[i, j] - pred)
                         if e > consist_wide or (
@@ -507,7 +523,7 @@ def find_site(  # type: ignore[no-untyped-def]
                             break
                         err += e
                         worst = max(worst, e)
-                        pred2 = lattice_distance(c2x, c2y, jx, jy) * d
+                        pred2 = expected_distance(i, j, c2x, c2y, nb, ci, cf)
                         if abs(nb_dist[i, j] - pred2) > consist_tol:
                             ruled_out_mirror = True
                         if direction_index(jx - cx, jy - cy) >= 0:
@@ -526,7 +542,7 @@ def find_site(  # type: ignore[no-untyped-def]
                     ok = False
                 if ok and tol_scale > plain_scale and n_adjacent < wide_min:
                     ok = worst <= consist_tol and in_window(
-                        nb_dist[i, a], nb_dist[i, b], pair_aim, cf, plain_scale
+                        dist_a, dist_b, pair_aim, cf, plain_scale
                     )
                 if ok and ruled_out_mirror and min_ts >= 0 and err < best_err:
                     if hole_memory and shuts_in(cx, cy, held_i, ox, oy, gene_flag, ci):
@@ -724,6 +740,7 @@ def search_rule(  # type: ignore[no-untyped-def]
             ri[i, R_TAG_Y] = cy
             ri[i, R_NN] = gene_at(gene_nn, ci, cx, cy)
             ri[i, R_TS] = min_ts + 1
+            estimate_offset(i, tick, cx, cy, ri[i, R_SUB_SINCE], nb, nb_dist, ri, ci, d)
             ri[i, R_HAS_TAG] = 1
             ri[i, R_COUNT] = 0
             # It has observed no neighbour of this site yet; a mask left from a site it
