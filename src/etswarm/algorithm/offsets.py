@@ -136,6 +136,18 @@ def is_anchor(i, j, since, nb, nb_dist):  # type: ignore[no-untyped-def]
     )
 
 
+@njit(inline="always")
+def from_anchor(i, j, px, py, nb, d):  # type: ignore[no-untyped-def]
+    """Unit vector (x, y) from where placed robot j of robot i's table stands to the point
+    (px, py) (mm, gene frame), and the distance (mm); (0, 0, distance) nearer than 1 mm."""
+    ux = px - anchor_x(i, j, nb, d)
+    uy = py - anchor_y(i, j, nb, d)
+    norm = math.sqrt(ux * ux + uy * uy)
+    if norm < 1.0:
+        return 0.0, 0.0, norm
+    return ux / norm, uy / norm, norm
+
+
 @njit
 def estimate_offset(i, tick, cx, cy, since, nb, nb_dist, ri, ci, d):  # type: ignore[no-untyped-def]
     """Robot i has just taken site (cx, cy): estimate where it stands from the placed robots
@@ -164,13 +176,9 @@ def estimate_offset(i, tick, cx, cy, since, nb, nb_dist, ri, ci, d):  # type: ig
         for j in range(nb.shape[1]):
             if not is_anchor(i, j, since, nb, nb_dist):
                 continue
-            ux = px - anchor_x(i, j, nb, d)
-            uy = py - anchor_y(i, j, nb, d)
-            norm = math.sqrt(ux * ux + uy * uy)
+            ux, uy, norm = from_anchor(i, j, px, py, nb, d)
             if norm < 1.0:
                 continue
-            ux /= norm
-            uy /= norm
             res = nb_dist[i, j] - norm
             a11 += ux * ux
             a12 += ux * uy
@@ -202,12 +210,10 @@ def refine_offset(i, tick, nb, nb_dist, ri, d):  # type: ignore[no-untyped-def]
     for j in range(nb.shape[1]):
         if not is_anchor(i, j, since, nb, nb_dist):
             continue
-        ux = px - anchor_x(i, j, nb, d)
-        uy = py - anchor_y(i, j, nb, d)
-        norm = math.sqrt(ux * ux + uy * uy)
+        ux, uy, norm = from_anchor(i, j, px, py, nb, d)
         if norm < 1.0:
             continue
-        step = REFINE_GAIN * (nb_dist[i, j] - norm) / norm
+        step = REFINE_GAIN * (nb_dist[i, j] - norm)
         dx += step * ux
         dy += step * uy
     ri[i, R_OFF_X] += round(dx * FINE_PER_MM)
