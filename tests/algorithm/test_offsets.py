@@ -182,3 +182,17 @@ def test_a_formed_shape_knows_where_its_robots_stand():
 
     assert residual(own) < 0.6 * residual(tags_xy)
     assert residual(own) < 3.0
+
+
+def test_the_viewer_shows_a_robots_offset():
+    from etswarm.algorithm.live import ETLive
+
+    live = ETLive(ETRun(RunConfig(shape="triangle", seed=0, max_time_s=3600)))
+    ri = live.run.controller.ri
+    while not (ri[:, R_OFF_REFINE] == 1).any():
+        live.advance(31 * 10)
+    i = int(np.flatnonzero(ri[:, R_OFF_REFINE] == 1)[0])
+    x, y = (float(v) for v in live.robot_info(i)["offset_mm"].strip("()").split(","))
+    assert (x, y) == pytest.approx(tuple(ri[i, [R_OFF_X, R_OFF_Y]] / FINE_PER_MM), abs=0.05)
+    queued = int(np.flatnonzero(live.run.controller.states == 0)[0])
+    assert live.robot_info(queued)["offset_mm"] == "-"

@@ -13,8 +13,11 @@ from etswarm.algorithm.memory import (
     NB_TY,
     R_COUNT,
     R_NN,
+    R_OFF_X,
+    R_OFF_Y,
     R_TS,
 )
+from etswarm.algorithm.offsets import FINE_PER_MM
 from etswarm.algorithm.run import ETRun
 from etswarm.algorithm.states import PLACED_STATES, STATE_NAMES
 from etswarm.damage.apply import SPLIT_SHIFT_MM
@@ -92,6 +95,11 @@ class ETLive:
             "NN": int(ri[i, R_NN]) if placed else "-",
             "count": int(ri[i, R_COUNT]) if placed else "-",
             "TS": int(ri[i, R_TS]) if placed else "-",
+            # where it estimates it stands off its site's centre (``offsets``)
+            "offset_mm": (
+                f"({ri[i, R_OFF_X] / FINE_PER_MM:+.1f}, {ri[i, R_OFF_Y] / FINE_PER_MM:+.1f})"
+                if placed else "-"
+            ),
             "neighbours": table,
         }
 
