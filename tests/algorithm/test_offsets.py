@@ -196,3 +196,25 @@ def test_the_viewer_shows_a_robots_offset():
     assert (x, y) == pytest.approx(tuple(ri[i, [R_OFF_X, R_OFF_Y]] / FINE_PER_MM), abs=0.05)
     queued = int(np.flatnonzero(live.run.controller.states == 0)[0])
     assert live.robot_info(queued)["offset_mm"] == "-"
+
+
+@pytest.mark.parametrize("offsets", ["off", "on"])
+def test_a_regrown_h_fills_its_crossbar_between_stretched_legs(offsets):
+    """`H` seed 2 cut across the middle: the crossbar remnant's new crossbar runs between
+    the stubs of its old legs, which the first formation left 22-32 mm farther apart than
+    their tags say. Without offsets its middle site stays free (no searcher's window opens
+    between robots 70-80 mm apart) and the remnant ends in two groups; with them it
+    re-forms, and so do the two legs."""
+    run = ETRun(RunConfig(shape="H", seed=2, max_time_s=4 * 3600, damage=("split y=mid",),
+                          et=ETParams(site_offsets=offsets)))
+    summary = run.run()
+    assert summary["formed"]
+    big = [c for c in summary["components"] if c["robots"] >= 6]
+    reformed = [c["formed"] and c["jaccard"] == 1.0 for c in big]
+    if offsets == "off":
+        assert not all(reformed), big
+        return
+    assert len(big) == 3 and all(reformed), big
+    assert all(c["census_count"] == c["robots"] == c["target_cells"] for c in big), big
+    assert summary["duplicate_tags"] == [] and summary["max_leaders_per_component"] <= 1
+    assert summary["states"]["Danger"] == 0 and summary["states"]["Leader"] == 0
