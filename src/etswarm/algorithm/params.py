@@ -279,8 +279,8 @@ class ETParams:
     site_offsets: str = "on"
     #: With ``site_offsets`` on, a searcher expects to read a placed robot this share of
     #: the way from the lattice distance (0) to the distance from where that robot really
-    #: stands (1). All the way aims every robot at its site's true centre, which a robot
-    #: standing off its own site may have made too narrow to reach.
+    #: stands (1), when that is farther; never nearer than the lattice distance. Over 13
+    #: shapes (seeds 30-49) 0.5 formed 241 of 260 against 235 with 1 (docs/algorithm.md).
     offset_trust: float = 0.5
 
     def __post_init__(self) -> None:
