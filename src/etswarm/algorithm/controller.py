@@ -100,7 +100,9 @@ from etswarm.algorithm.messages import (
     MSG_STATUS,
     MSG_TARGET,
     YIELDING_BIT,
+    get_i8,
     get_u16,
+    put_i8,
     target_signature,
 )
 from etswarm.algorithm.offsets import sent_offset
@@ -342,10 +344,8 @@ def ingest(i, k, tick, ri, in_type, in_data, in_dist, nb, nb_dist, ci):  # type:
         nb[i, slot, NB_TY] = ty - 256 if ty >= 128 else ty
         nb[i, slot, NB_TS] = np.int64(in_data[i, k, 5])
         nb[i, slot, NB_MASK] = np.int64(in_data[i, k, 7])
-        ox = np.int64(in_data[i, k, 6])
-        oy = np.int64(in_data[i, k, 8])
-        nb[i, slot, NB_OX] = ox - 256 if ox >= 128 else ox
-        nb[i, slot, NB_OY] = oy - 256 if oy >= 128 else oy
+        nb[i, slot, NB_OX] = get_i8(in_data[i, k], 6)
+        nb[i, slot, NB_OY] = get_i8(in_data[i, k], 8)
     else:
         nb[i, slot, NB_RELEASED] = np.int64(in_data[i, k, 7]) | (np.int64(in_data[i, k, 8]) << 8)
         nb[i, slot, NB_QRANK] = np.int64(in_data[i, k, 3]) | (np.int64(in_data[i, k, 4]) << 8)
@@ -434,9 +434,9 @@ def encode(i, tick, ri, out_on, out_type, out_data):  # type: ignore[no-untyped-
         out_data[i, 3] = ri[i, R_TAG_X] & 0xFF
         out_data[i, 4] = ri[i, R_TAG_Y] & 0xFF
         out_data[i, 5] = min(ri[i, R_TS], 255)
-        out_data[i, 6] = sent_offset(ri[i, R_OFF_X]) & 0xFF
+        put_i8(out_data[i], 6, sent_offset(ri[i, R_OFF_X]))
         out_data[i, 7] = ri[i, R_MASK] & 0x3F
-        out_data[i, 8] = sent_offset(ri[i, R_OFF_Y]) & 0xFF
+        put_i8(out_data[i], 8, sent_offset(ri[i, R_OFF_Y]))
     else:
         out_data[i, 3] = ri[i, R_QRANK] & 0xFF
         out_data[i, 4] = (ri[i, R_QRANK] >> 8) & 0xFF
