@@ -24,7 +24,8 @@ from etswarm.algorithm.params import ETParams
 from etswarm.algorithm.search import begin_search, lost_motion, search_rule
 
 TICK = 100_000
-#: Lost this long: the spiral drives forward most of the time.
+#: Lost this long: the spiral drives forward most of the time (the fixed spiral of
+#: commands, ``lost_homing`` off, which these tests compare with).
 LOST_FOR = 31 * 2000
 
 
@@ -43,7 +44,9 @@ def steer_lost(anchored: int, beacon: str = "on", me: int = 0, other: int = 5,
     nb_dist[me, 0] = dist_mm
     gene = np.ones((3, 3), dtype=np.uint8)
     gene_nn = np.full((3, 3), 6, dtype=np.int8)
-    ci, cf = ETParams(lost_beacon=beacon, lost_yield=lost_yield).pack(31, gene_x0=-1, gene_y0=-1)
+    ci, cf = ETParams(lost_beacon=beacon, lost_yield=lost_yield, lost_homing="off").pack(
+        31, gene_x0=-1, gene_y0=-1
+    )
     motor = np.full(ri.shape[0], FORWARD, dtype=np.uint8)
     held = np.zeros((ri.shape[0], 1, 1), dtype=np.uint8)
     search_rule(me, TICK, True, ri, nb, nb_dist, motor, gene, gene_nn, ci, cf, held, 0, 0)

@@ -39,7 +39,7 @@ from etswarm.algorithm.memory import (
     SLOT_WY,
     allocate,
 )
-from etswarm.algorithm.params import ETParams
+from etswarm.algorithm.params import NOMINAL_MOTION, ETParams
 from etswarm.algorithm.states import State
 from etswarm.shapes.lattice import neighbour_counts
 
@@ -64,7 +64,16 @@ class ETController:
     part_step = staticmethod(et_part)
     rest_step = staticmethod(et_rest)
 
-    def __init__(self, n_robots: int, target: np.ndarray, et: ETParams, ticks_per_s: int):
+    def __init__(
+        self,
+        n_robots: int,
+        target: np.ndarray,
+        et: ETParams,
+        ticks_per_s: int,
+        nominal_motion: tuple[float, float, float, float] = NOMINAL_MOTION,
+    ):
+        """``nominal_motion``: the robot model the searchers' odometry assumes (see
+        ``ETParams.pack``)."""
         self.ri, self.nb, self.nb_dist = allocate(n_robots)
         # Per robot, the tick until which it sleeps unless it hears something new (0: awake;
         # see ``controller.et_part``). A host that edits a robot's memory must wake it.
@@ -83,7 +92,10 @@ class ETController:
         self.gene_nn = np.zeros((INITIAL_SLOTS, *self.grid_shape), dtype=np.int8)
         self.slot_info = np.zeros((INITIAL_SLOTS, SLOT_FIELDS), dtype=np.int64)
         self.slot_cells: list[np.ndarray] = []
-        self.ci, self.cf = et.pack(ticks_per_s, self.x0, self.y0, diameter_hops=int(span.sum()))
+        self.ci, self.cf = et.pack(
+            ticks_per_s, self.x0, self.y0, diameter_hops=int(span.sum()),
+            nominal_motion=nominal_motion,
+        )
         # Each robot's bitmap of the tags it collected on a census walk (only Leaders use
         # it; a placeholder when the census is by spanning tree).
         walk_grid = self.grid_shape if et.census == "walk" else (1, 1)

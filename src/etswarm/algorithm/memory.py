@@ -164,7 +164,18 @@ R_OFF_X = R_EXT_GREW + 1
 R_OFF_Y = R_OFF_X + 1
 R_OFF_REFINE = R_OFF_Y + 1
 R_OFF_TICK = R_OFF_REFINE + 1
-R_FIELDS = R_OFF_TICK + 1
+#: A searcher's odometry (``homing``): its pose as it reckons it from its own motor
+#: commands, in a frame of its own (position x, y and heading), and home, where it last
+#: heard a stationary robot (x, y); the length of its path so far, and that length when
+#: it last lost the group.
+R_ODO_X = R_OFF_TICK + 1
+R_ODO_Y = R_ODO_X + 1
+R_ODO_H = R_ODO_Y + 1
+R_HOME_X = R_ODO_H + 1
+R_HOME_Y = R_HOME_X + 1
+R_ODO_PATH = R_HOME_Y + 1
+R_LOST_PATH = R_ODO_PATH + 1
+R_FIELDS = R_LOST_PATH + 1
 
 PHASE_NORMAL = 0
 PHASE_ELECTING = 1

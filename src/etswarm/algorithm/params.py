@@ -5,6 +5,7 @@ All times are simulated seconds (converted to ticks at 31 ticks/s); all lengths 
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, fields
 
 import numpy as np
@@ -49,7 +50,8 @@ C_GOSSIP_EVERY = 33  # placed robots send a chunk of their held-site memory ever
 C_TICKS_RANK_WAIT = 34  # a Queued robot waits for its queue rank at most this long (0: off)
 C_EXTENT = 35  # 1: electing robots flood the remnant's extent for the scaled shape's placement
 C_OFFSETS = 36  # 1: placed robots estimate and send their offset from their site (``offsets``)
-N_CI = 37
+C_LOST_HOMING = 37  # 1: a lost searcher circles where it last heard the group (``homing``)
+N_CI = 38
 
 F_SPACING = 0  # lattice spacing d
 F_PAIR_TOL = 1  # two references within this of d trigger a site candidate
@@ -69,7 +71,15 @@ F_WIDEN_TICKS = 14  # ticks at the shape over which a searcher's tolerances wide
 F_DIVE = 15  # after damage, a searcher long at the shape edge-follows up to this much nearer (mm)
 F_DIVE_FIRST = 16  # in the first formation, the same once a searcher has been widen_s at the shape
 F_OFFSET_TRUST = 17  # share of a placed robot's offset a searcher's expected readings follow
-N_CF = 18
+# The robot's nominal motion, which its odometry assumes (``homing``).
+F_ODO_STEP = 18  # forward travel per tick, mm
+F_ODO_TURN = 19  # pivot per tick, rad
+F_ODO_LEG = 20  # angle of the pivot legs from the heading, rad
+F_ODO_RADIUS = 21  # body radius (legs on the rim), mm
+N_CF = 22
+
+#: The DESIGN section 2 robot: 7 mm/s, 13 deg/s, legs at 125.5 deg, radius 16.5 mm.
+NOMINAL_MOTION = (7.0, 13.0, 125.5, 16.5)
 
 #: Census methods (``ETParams.census``): the paper's periphery walk, or a spanning tree.
 CENSUS_METHODS = ("tree", "walk")
@@ -282,6 +292,11 @@ class ETParams:
     #: stands (1), when that is farther; never nearer than the lattice distance. Over 13
     #: shapes (seeds 30-49) 0.5 formed 241 of 260 against 235 with 1 (docs/algorithm.md).
     offset_trust: float = 0.5
+    #: "on": a lost searcher, once its pivot on the spot has not found the group, circles
+    #: the place where it last heard a stationary robot on a widening spiral, steering by
+    #: its odometry (``homing``). "off": it drives a fixed widening spiral of commands,
+    #: whose centre every turn away from another robot moves.
+    lost_homing: str = "on"
 
     def __post_init__(self) -> None:
         for f in fields(self):
@@ -291,7 +306,7 @@ class ETParams:
                     raise EtswarmError(f"census must be one of {CENSUS_METHODS}, got {value!r}")
             elif f.name in (
                 "creep", "second_ring", "hole_memory", "fill_lookahead", "pocket", "queue_stride",
-                "silent_sites", "lost_beacon", "lost_yield", "site_offsets",
+                "silent_sites", "lost_beacon", "lost_yield", "site_offsets", "lost_homing",
             ):
                 if value not in ("on", "off"):
                     raise EtswarmError(f"{f.name} must be 'on' or 'off', got {value!r}")
@@ -324,8 +339,12 @@ class ETParams:
         gene_x0: int,
         gene_y0: int,
         diameter_hops: int = 10,
+        nominal_motion: tuple[float, float, float, float] = NOMINAL_MOTION,
     ) -> tuple[np.ndarray, np.ndarray]:
         """Return ``(ci, cf)``: int64 (N_CI,) and float64 (N_CF,) arrays for the kernel.
+
+        ``nominal_motion`` is the robot model the odometry assumes: forward speed (mm/s),
+        turning rate (deg/s), pivot-leg angle (deg) and body radius (mm).
 
         ``diameter_hops`` bounds the hops across any remnant (the shape's extent); the
         election's quiet time grows with it so a Leader is declared only after the lowest
@@ -365,6 +384,7 @@ class ETParams:
         # the placement over the extent counts the sites remembered held: gossip keeps them
         ci[C_EXTENT] = 1 if self.placement == "extent" and ci[C_GOSSIP_EVERY] > 0 else 0
         ci[C_OFFSETS] = 1 if self.site_offsets == "on" else 0
+        ci[C_LOST_HOMING] = 1 if self.lost_homing == "on" else 0
         ci[C_QUEUE_STRIDE] = 1 if self.queue_stride == "on" else 0
         ci[C_SILENT_SITES] = 1 if self.silent_sites == "on" else 0
         ci[C_LOST_BEACON] = 1 if self.lost_beacon == "on" else 0
@@ -395,6 +415,11 @@ class ETParams:
         cf[F_BALANCE_TOL] = self.balance_tol_mm
         cf[F_WALK_COLLECT] = self.census_collect_mm
         cf[F_OFFSET_TRUST] = self.offset_trust
+        speed_mm_s, turn_deg_s, leg_deg, radius_mm = nominal_motion
+        cf[F_ODO_STEP] = speed_mm_s / ticks_per_s
+        cf[F_ODO_TURN] = math.radians(turn_deg_s) / ticks_per_s
+        cf[F_ODO_LEG] = math.radians(leg_deg)
+        cf[F_ODO_RADIUS] = radius_mm
         return ci, cf
 
 

@@ -131,7 +131,11 @@ class ETRun:
         self.world = World.from_positions(
             self.layout.pos, self.layout.heading, self.sim_params, config.seed
         )
-        self.controller = ETController(n, cells, config.et, self.sim_params.ticks_per_s)
+        sp = self.sim_params
+        self.controller = ETController(
+            n, cells, config.et, sp.ticks_per_s,
+            nominal_motion=(sp.speed_mm_s, sp.turn_rate_deg_s, sp.leg_angle_deg, sp.body_radius_mm),
+        )
         self.controller.seed(self.layout)
         self.sim = Simulator(self.world, self.controller, self.sim_params, config.seed)
         self.damage_rng = stream(config.seed, "damage")

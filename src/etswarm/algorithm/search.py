@@ -6,6 +6,13 @@ import numpy as np
 from numba import njit
 
 from etswarm.algorithm.fill_order import strands_a_site
+from etswarm.algorithm.homing import (
+    homing_motion,
+    integrate,
+    note_home,
+    note_lost,
+    reset_odometry,
+)
 from etswarm.algorithm.kernel_util import (
     ACTIVE,
     DIR_X,
@@ -76,6 +83,7 @@ from etswarm.algorithm.params import (
     C_FILL_LOOKAHEAD,
     C_HOLE_MEMORY,
     C_LOST_BEACON,
+    C_LOST_HOMING,
     C_LOST_YIELD,
     C_OFFSETS,
     C_ORBIT_BOUNCE,
@@ -180,6 +188,7 @@ def begin_search(i, tick, ri):  # type: ignore[no-untyped-def]
     ri[i, R_LOST_SINCE] = 0
     ri[i, R_TOWARD_SINCE] = tick
     ri[i, R_FROM_ID] = -1
+    reset_odometry(i, ri)
     ri[i, R_REF_MOVED] = 0
     forget_recent_references(i, ri)
 
@@ -611,6 +620,7 @@ def search_rule(  # type: ignore[no-untyped-def]
         remember_heard(i, tick, ri, nb, held, ox, oy)
     held_i = held[i]
     moving = motor[i] != STOP  # its command since the last tick
+    integrate(i, ri, motor[i], cf)
     d = cf[F_SPACING]
     steer_fresh = ci[C_TICKS_MOVE_FRESH]
     closing = cf[F_CLOSING]
@@ -686,8 +696,12 @@ def search_rule(  # type: ignore[no-untyped-def]
 
     if not lost:
         ri[i, R_LOST_SINCE] = 0
+        ref_slot = placed_slot if placed_slot >= 0 else queued_slot
+        if nb[i, ref_slot, NB_LAST] == tick:
+            note_home(i, ri)
     elif ri[i, R_LOST_SINCE] == 0:
         ri[i, R_LOST_SINCE] = tick + 1
+        note_lost(i, ri)
 
     # A searcher that has been at the shape for long widens its tolerances: it may be
     # squeezed where the lattice is distorted and never stand within the tight window.
@@ -850,7 +864,11 @@ def search_rule(  # type: ignore[no-untyped-def]
     elif beacon:
         motor[i] = toward
     elif lost:
-        motor[i] = lost_motion(tick, ri[i, R_LOST_SINCE] - 1)
+        lost_for = tick - (ri[i, R_LOST_SINCE] - 1)
+        if ci[C_LOST_HOMING] == 1 and lost_for >= LOST_PIVOT_TICKS:
+            motor[i] = homing_motion(i, ri)
+        else:
+            motor[i] = lost_motion(tick, ri[i, R_LOST_SINCE] - 1)
     elif tick - ri[i, R_TOWARD_SINCE] > CIRCLING_TICKS and ri[i, R_REF_TREND] < 0:
         # Pivoting towards a group that stays beyond the aim only circles on the spot
         # (a pivot turns about a leg): drive straight on while the distance shrinks.
