@@ -11,10 +11,10 @@ from etswarm.algorithm.run import ETRun, RunConfig
 #: The settings these runs were traced with (session 12): with the wider consistency
 #: tolerance of session 13 the same seeds form without diving too.
 # the settings these runs were traced with (before the pinched-mouth default, the lookahead,
-# held-site gossip and site offsets)
+# held-site gossip, site offsets and lost searchers' homing)
 TRACED = {
     "consistency_widen_max": 1.0, "fill_lookahead": "off", "held_gossip_every": 0,
-    "site_offsets": "off",
+    "site_offsets": "off", "lost_homing": "off",
 }
 
 

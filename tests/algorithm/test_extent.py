@@ -110,11 +110,11 @@ def regrown(placement: str) -> tuple[ETRun, np.ndarray, dict[int, int], dict[int
     """Starfish seed 0 cut through the middle: run until both remnants have their
     targets. Returns the run, the tags (N, 2) held when the cut came, each Leader's slot
     and, per slot, how many robots stayed on a site of the new target. (Traced before
-    site offsets.)"""
+    site offsets and homing.)"""
     run = ETRun(
         RunConfig(
             shape="starfish", seed=0, max_time_s=6 * 3600, damage=("split y=mid",),
-            et=ETParams(placement=placement, site_offsets="off"),
+            et=ETParams(placement=placement, site_offsets="off", lost_homing="off"),
         )
     )
     while not any(e["kind"] == "damage" for e in run.events):

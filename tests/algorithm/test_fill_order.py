@@ -71,7 +71,10 @@ def test_heart_seed_9_forms_only_with_the_lookahead() -> None:
         config = RunConfig(
             shape="heart", seed=9, max_time_s=4 * 3600.0,
             # as traced
-            et=ETParams(fill_lookahead=lookahead, held_gossip_every=0, site_offsets="off"),
+            et=ETParams(
+                fill_lookahead=lookahead, held_gossip_every=0, site_offsets="off",
+                lost_homing="off",
+            ),
         )
         run = ETRun(config)
         summary = run.run()

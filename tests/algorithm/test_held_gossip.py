@@ -140,7 +140,8 @@ def test_fewer_tags_held_twice_on_a_bent_lattice() -> None:
     dups = {}
     for every in (0, 6):
         run = ETRun(RunConfig(shape="bigdisc", seed=0, max_time_s=6 * 3600,
-                              et=ETParams(held_gossip_every=every, site_offsets="off")))
+                              et=ETParams(held_gossip_every=every, site_offsets="off",
+                                             lost_homing="off")))
         dups[every] = len(run.run()["duplicate_tags"])
     assert dups[0] >= 5, dups
     assert dups[6] <= dups[0] // 4, dups

@@ -15,6 +15,7 @@ import pytest
 from etswarm.algorithm.homing import (
     ODO_PER_MM,
     ODO_PER_RAD,
+    RING_MAX_MM,
     homing_motion,
     integrate,
     note_home,
@@ -156,6 +157,14 @@ def test_the_spiral_sweeps_every_point_round_home_within_radio_range() -> None:
     last = np.hypot(*track[3 * len(track) // 4:].T)
     assert last.min() > ring_radius(0.7 * path) - 40.0
     assert last.max() < ring_radius(path) + 40.0
+
+
+def test_the_spiral_starts_again_from_home_past_a_metre() -> None:
+    radii = [ring_radius(p) for p in np.arange(0.0, 80_000.0, 100.0)]
+    assert max(radii) <= RING_MAX_MM
+    assert max(radii) > RING_MAX_MM - 10.0
+    assert min(radii[len(radii) // 2:]) < 60.0  # it went back to the first ring
+    assert np.all(np.diff(radii[:100]) >= 0)  # growing at first
 
 
 def test_home_is_where_it_last_heard_the_group() -> None:

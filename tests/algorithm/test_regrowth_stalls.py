@@ -12,10 +12,10 @@ from etswarm.algorithm.run import ETRun, RunConfig
 
 #: The consistency settings of session 12, which the first formations were traced with.
 # the settings these runs were traced with (before the pinched-mouth default, the lookahead,
-# held-site gossip, the extent placement and site offsets)
+# held-site gossip, the extent placement, site offsets and lost searchers' homing)
 TRACED = {
     "consistency_widen_max": 1.0, "fill_lookahead": "off", "held_gossip_every": 0,
-    "placement": "local", "site_offsets": "off",
+    "placement": "local", "site_offsets": "off", "lost_homing": "off",
 }
 
 

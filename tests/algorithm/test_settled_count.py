@@ -50,7 +50,8 @@ def test_a_large_remnant_elects_and_counts_exactly() -> None:
     before the settled count (2.8 h in Danger)."""
     # (as traced, without held-site gossip)
     run = ETRun(RunConfig(shape="bigdisc", seed=0, max_time_s=3.5 * 3600,
-                          et=ETParams(held_gossip_every=0, site_offsets="off")))
+                          et=ETParams(held_gossip_every=0, site_offsets="off",
+                                       lost_homing="off")))
     summary = run.run()
     kinds = [e["kind"] for e in summary["events"]]
     assert "detected" in kinds

@@ -49,6 +49,11 @@ RING_START_MM = 50.0
 #: ... and widens by about this much per lap (mm): less than the width a lap sweeps
 #: within radio range (2 x 70 mm), so no robot between two laps goes unheard.
 RING_SPACING_MM = 100.0
+#: When the ring has grown to this radius (mm) the robot starts again from home: what it
+#: lost is within a metre or two (the shape, or the repository's new end), and a crowd of
+#: searchers round a few placed robots (a regrowth that never got its third seed) shoves
+#: its members out of earshot one by one; unbounded spirals took them metres away.
+RING_MAX_MM = 1000.0
 #: Radial error (mm) at which the robot steers straight at (or away from) home; nearer
 #: the ring it blends towards the ring's tangent.
 RING_BAND_MM = 30.0
@@ -123,10 +128,13 @@ def ring_radius(path_mm):  # type: ignore[no-untyped-def]
 
     A lap of radius r is 2 pi r long and the radius grows by ``RING_SPACING_MM`` per
     lap: d(r^2)/d(path) = spacing / pi. Growing with the path, not with time, the
-    spiral waits while the robot stands (yielding) instead of leaving gaps.
+    spiral waits while the robot stands (yielding) instead of leaving gaps. Past
+    ``RING_MAX_MM`` it starts again from ``RING_START_MM`` (the robot heads home).
     """
     grow = RING_SPACING_MM / math.pi
-    return math.sqrt(RING_START_MM * RING_START_MM + grow * path_mm)
+    start2 = RING_START_MM * RING_START_MM
+    one_spiral = (RING_MAX_MM * RING_MAX_MM - start2) / grow  # mm of path
+    return math.sqrt(start2 + grow * (path_mm % one_spiral))
 
 
 @njit
