@@ -29,6 +29,7 @@ from etswarm.algorithm.memory import (
     R_WALK_TAGS,
 )
 from etswarm.algorithm.params import ETParams
+from etswarm.algorithm.placement import choose_translation
 from etswarm.algorithm.silent import enclosed_tags, silent_tags
 from etswarm.algorithm.states import PLACED_STATES, STATE_NAMES, State
 from etswarm.damage import DamageSpec, apply_damage, parse_damage
@@ -45,7 +46,7 @@ from etswarm.measures.formation import (
 )
 from etswarm.seeding import stream
 from etswarm.shapes import load_shape, scale
-from etswarm.shapes.lattice import NEIGHBOUR_OFFSETS, tags_to_xy
+from etswarm.shapes.lattice import tags_to_xy
 from etswarm.sim import Simulator
 from etswarm.sim.params import SimParams
 from etswarm.sim.world import World
@@ -250,14 +251,10 @@ class ETRun:
         self.events.insert(at, event)
 
     def _scaled_placement(self, leader: int, n: int) -> tuple[np.ndarray, int, int]:
-        """scale(bitmap, n), translated so that it holds the Leader's site and two sites of
-        its neighbours that make a seed triangle with it (paper: the Leader and two
-        neighbours are the new seeds), as many as possible of the sites the Leader
-        remembers held (``site_memory``) inside the remnant's extent it learnt while
-        electing (``extent``), then as many cells inside that extent, then as many sites it
-        knows to be held as possible and, among those, as few of the sites it knows fell
-        silent (a dead robot may stand there, see ``silent``). Empty when n < 3 (too small
-        to seed)."""
+        """scale(bitmap, n), translated as the Leader chooses on board
+        (``placement.choose_translation``): on a seed triangle, the Leader's own if it can,
+        over as much of the remnant as it knows of, and off the sites that fell silent (a
+        dead robot may stand there, see ``silent``). Empty when n < 3 (too small to seed)."""
         if n < 3:
             return np.zeros((0, 2), dtype=np.int64), 0, 0
         cells = scale(self.shape, min(n, self.shape.n_cells))
@@ -271,12 +268,6 @@ class ETRun:
         old_cells = np.asarray(ctl.slot_cells[int(ctl.ri[leader, R_TSLOT])]).reshape(-1, 2)
         old_shape = {(int(x), int(y)) for x, y in old_cells.tolist()}
         enclosed = enclosed_tags(ctl.ri, leader, old_shape) - known
-        offsets = [tuple(int(v) for v in o) for o in NEIGHBOUR_OFFSETS]
-        triangles = [
-            ((lx + a[0], ly + a[1]), (lx + b[0], ly + b[1]))
-            for a, b in zip(offsets, offsets[1:] + offsets[:1], strict=True)
-            if (lx + a[0], ly + a[1]) in known and (lx + b[0], ly + b[1]) in known
-        ]
         # The remnant's hexagon of tags, flooded while electing (``extent``), and the sites
         # in it the Leader remembers held (``site_memory``), less the sites it learnt fell
         # silent: nobody of the remnant holds those. Only with held-site gossip: without
@@ -291,27 +282,12 @@ class ETRun:
             remembered = sorted((ctl.remembered_tags(leader) | known) - silent)
             inside = cells_in(np.array(remembered).reshape(-1, 2), extent)
             remnant = {t for t, keep in zip(remembered, inside, strict=True) if keep}
-        best: tuple[int, ...] | None = None
-        for sx, sy in cells.tolist():
-            tx, ty = lx - sx, ly - sy
-            moved = cells + np.array([tx, ty])
-            if not ctl.fits(moved):
-                continue
-            sites = {(int(x), int(y)) for x, y in moved.tolist()}
-            seeded = any(p in sites and q in sites for p, q in triangles)
-            kept = len(sites & known)
-            covered = len(sites & silent)
-            on_remnant = len(sites & remnant)
-            within = 0 if extent is None else int(cells_in(moved, extent).sum())
-            key = (
-                0 if seeded else 1, len(sites & enclosed), -on_remnant, -within, -kept,
-                covered, abs(tx) + abs(ty), tx, ty,
-            )
-            if best is None or key < best:
-                best = key
-        if best is None:
+        shift = choose_translation(
+            cells, (lx, ly), known, remnant, silent, enclosed, extent, ctl.fits
+        )
+        if shift is None:
             return cells, 0, 0
-        tx, ty = best[-2], best[-1]
+        tx, ty = shift
         return cells + np.array([tx, ty]), tx, ty
 
     def _group_of(self, robot: int) -> np.ndarray:

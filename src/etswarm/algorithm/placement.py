@@ -1,0 +1,110 @@
+"""Where a Leader puts the scaled shape: the translation of ``scale(bitmap, n)``.
+
+The Leader computes this on board from what it learnt while electing; the host answers
+its request with the same computation (``run.ETRun``). Growth needs a seed triangle: three
+mutually adjacent held sites of the new shape, from which searchers localise. The paper
+seeds the Leader and two of its neighbours; a Leader with no two adjacent neighbours
+left (dead robots round it, ``T`` ``kill random=0.1`` seed 7, where the Leader had one
+live neighbour) seeds from any triangle of sites it heard or remembers held instead, and
+leaves the new shape itself if it must.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+
+import numpy as np
+
+from etswarm.algorithm.extent import cells_in
+from etswarm.shapes.lattice import NEIGHBOUR_OFFSETS
+
+Tag = tuple[int, int]
+
+#: The six neighbour offsets in turn round a site (consecutive ones are adjacent).
+RING: list[Tag] = [(int(a), int(b)) for a, b in NEIGHBOUR_OFFSETS]
+
+
+def triangles_at(tag: Tag, held: set[Tag]) -> list[tuple[Tag, Tag, Tag]]:
+    """Seed triangles with a corner on ``tag``: it and two adjacent neighbour sites, all in
+    ``held``."""
+    if tag not in held:
+        return []
+    x, y = tag
+    out = []
+    for a, b in zip(RING, RING[1:] + RING[:1], strict=True):
+        p, q = (x + a[0], y + a[1]), (x + b[0], y + b[1])
+        if p in held and q in held:
+            out.append((tag, p, q))
+    return out
+
+
+def choose_translation(
+    cells: np.ndarray,
+    leader: Tag,
+    known: set[Tag],
+    remnant: set[Tag],
+    silent: set[Tag],
+    enclosed: set[Tag],
+    extent: np.ndarray | None,
+    fits: Callable[[np.ndarray], bool],
+) -> tuple[int, int] | None:
+    """The translation (tx, ty) for the scaled shape ``cells`` ((P, 2) tags), or None when
+    no translation fits the gene grids.
+
+    ``known``: tags the Leader heard held since the election began; ``remnant``: the held
+    tags it remembers inside the remnant's ``extent`` (hexagon of least and greatest tags
+    along the three axes, or None); ``silent``: sites that fell silent (a dead robot may
+    stand there); ``enclosed``: silent sites with live robots round them.
+
+    First the translations that put a cell on the Leader's site, ranked by: seeded (the
+    Leader and two adjacent known neighbours inside), fewest enclosed silent sites, most
+    remembered held sites of the remnant inside, most cells inside the extent, most known
+    sites, fewest silent sites, then smallest shift. If none of them is seeded, the
+    translations that put a cell on any site known or remembered held, seeded by any
+    triangle of such sites, ranked the same way.
+    """
+    own = [(leader[0] - int(sx), leader[1] - int(sy)) for sx, sy in cells.tolist()]
+    held = known | {leader}
+    leader_triangles = triangles_at(leader, held)
+    best = _best(cells, own, leader_triangles, known, remnant, silent, enclosed, extent, fits)
+    if best is not None and best[0] == 0:
+        return best[-2], best[-1]
+    # sites it remembers held in the remnant count too: it heard few robots itself
+    held |= remnant
+    triangles = [t for tag in sorted(held) for t in triangles_at(tag, held)]
+    if triangles:
+        shifts = sorted({(kx - int(sx), ky - int(sy)) for kx, ky in held for sx, sy in cells})
+        anywhere = _best(cells, shifts, triangles, known, remnant, silent, enclosed, extent, fits)
+        if anywhere is not None and anywhere[0] == 0:
+            return anywhere[-2], anywhere[-1]
+    return None if best is None else (best[-2], best[-1])
+
+
+def _best(
+    cells: np.ndarray,
+    shifts: list[Tag],
+    triangles: list[tuple[Tag, Tag, Tag]],
+    known: set[Tag],
+    remnant: set[Tag],
+    silent: set[Tag],
+    enclosed: set[Tag],
+    extent: np.ndarray | None,
+    fits: Callable[[np.ndarray], bool],
+) -> tuple[int, ...] | None:
+    """The least ranking key (see ``choose_translation``) over ``shifts``, ending with the
+    shift (tx, ty); None when no shift fits."""
+    best: tuple[int, ...] | None = None
+    for tx, ty in shifts:
+        moved = cells + np.array([tx, ty])
+        if not fits(moved):
+            continue
+        sites = {(int(x), int(y)) for x, y in moved.tolist()}
+        seeded = any(all(c in sites for c in tri) for tri in triangles)
+        within = 0 if extent is None else int(cells_in(moved, extent).sum())
+        key = (
+            0 if seeded else 1, len(sites & enclosed), -len(sites & remnant), -within,
+            -len(sites & known), len(sites & silent), abs(tx) + abs(ty), tx, ty,
+        )
+        if best is None or key < best:
+            best = key
+    return best
