@@ -23,6 +23,7 @@ from etswarm.algorithm.homing import (
     reset_odometry,
     ring_radius,
 )
+from etswarm.algorithm.live import ETLive
 from etswarm.algorithm.memory import (
     R_LOST_PATH,
     R_ODO_H,
@@ -192,5 +193,9 @@ def test_triangle_seed_31_waits_for_a_lost_searcher_without_homing(homing: str) 
     assert summary["formed"] == (homing == "on")
     assert not summary["duplicate_tags"]
     if homing == "off":
-        lost = run.controller.states == int(State.SEARCH)
-        assert lost.any()
+        lost = np.flatnonzero(run.controller.states == int(State.SEARCH))
+        assert len(lost)
+        # the viewer's details of a lost searcher say how long it has been lost
+        info = ETLive(run).robot_info(int(lost[0]))
+        assert info["lost_s"] != "-" and float(info["lost_s"]) > 60
+        assert float(info["from_home_mm"]) >= 0

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from etswarm.algorithm.homing import ODO_PER_MM
 from etswarm.algorithm.memory import (
     NB_ID,
     NB_LAST,
@@ -12,7 +13,12 @@ from etswarm.algorithm.memory import (
     NB_TX,
     NB_TY,
     R_COUNT,
+    R_HOME_X,
+    R_HOME_Y,
+    R_LOST_SINCE,
     R_NN,
+    R_ODO_X,
+    R_ODO_Y,
     R_OFF_X,
     R_OFF_Y,
     R_TS,
@@ -88,6 +94,9 @@ class ETLive:
                 }
             )
         placed = state >= 2
+        searching = state == 1
+        lost_since = int(ri[i, R_LOST_SINCE])
+        from_home = np.hypot(ri[i, R_ODO_X] - ri[i, R_HOME_X], ri[i, R_ODO_Y] - ri[i, R_HOME_Y])
         return {
             "ID": i,
             "state": STATE_NAMES[state],
@@ -100,6 +109,13 @@ class ETLive:
                 f"({ri[i, R_OFF_X] / FINE_PER_MM:+.1f}, {ri[i, R_OFF_Y] / FINE_PER_MM:+.1f})"
                 if placed else "-"
             ),
+            # a searcher that hears no stationary robot: for how long, and how far it
+            # reckons it is from where it last heard one (``homing``)
+            "lost_s": (
+                f"{(tick - (lost_since - 1)) / r.ticks_per_s:.0f}"
+                if searching and lost_since > 0 else "-"
+            ),
+            "from_home_mm": f"{from_home / ODO_PER_MM:.0f}" if searching else "-",
             "neighbours": table,
         }
 
