@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from etswarm.algorithm.placement import choose_translation, triangles_at
+from etswarm.algorithm.placement import RemnantView, choose_translation, triangles_at
 
 #: A bar of 3 x 2 cells (tags).
 BAR = np.array([[0, 0], [1, 0], [2, 0], [0, 1], [1, 1], [2, 1]])
@@ -12,6 +12,11 @@ BAR = np.array([[0, 0], [1, 0], [2, 0], [0, 1], [1, 1], [2, 1]])
 
 def always_fits(_cells: np.ndarray) -> bool:
     return True
+
+
+def view(known: set, remnant: set) -> RemnantView:
+    """What a Leader knows with no silent sites and no extent."""
+    return RemnantView(known, remnant, set(), set(), None, always_fits)
 
 
 def sites_after(shift: tuple[int, int]) -> set[tuple[int, int]]:
@@ -28,7 +33,7 @@ def test_triangles_at_a_site_are_it_and_two_adjacent_held_neighbours() -> None:
 def test_the_leader_seeds_with_two_of_its_neighbours() -> None:
     leader = (10, 10)
     known = {(11, 10), (11, 11), (30, 30)}
-    shift = choose_translation(BAR, leader, known, set(), set(), set(), None, always_fits)
+    shift = choose_translation(BAR, leader, view(known, set()))
     sites = sites_after(shift)
     assert {leader, (11, 10), (11, 11)} <= sites
 
@@ -40,10 +45,10 @@ def test_a_leader_without_two_adjacent_neighbours_seeds_from_a_remembered_triang
     leader = (0, 0)
     known = {(1, 0)}
     remnant = {(5, 0), (6, 0), (6, 1), (7, 1)}
-    shift = choose_translation(BAR, leader, known, remnant, set(), set(), None, always_fits)
+    shift = choose_translation(BAR, leader, view(known, remnant))
     sites = sites_after(shift)
     held = known | remnant | {leader}
     assert any(all(c in sites for c in tri) for tag in held for tri in triangles_at(tag, held))
     # with no triangle anywhere it still places the shape round the Leader
-    alone = choose_translation(BAR, leader, known, set(), set(), set(), None, always_fits)
+    alone = choose_translation(BAR, leader, view(known, set()))
     assert leader in sites_after(alone)

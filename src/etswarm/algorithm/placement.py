@@ -12,6 +12,7 @@ leaves the new shape itself if it must.
 from __future__ import annotations
 
 from collections.abc import Callable
+from dataclasses import dataclass
 
 import numpy as np
 
@@ -38,23 +39,28 @@ def triangles_at(tag: Tag, held: set[Tag]) -> list[tuple[Tag, Tag, Tag]]:
     return out
 
 
-def choose_translation(
-    cells: np.ndarray,
-    leader: Tag,
-    known: set[Tag],
-    remnant: set[Tag],
-    silent: set[Tag],
-    enclosed: set[Tag],
-    extent: np.ndarray | None,
-    fits: Callable[[np.ndarray], bool],
-) -> tuple[int, int] | None:
+@dataclass(frozen=True)
+class RemnantView:
+    """What the Leader knows of its remnant when it places the scaled shape.
+
+    ``known``: tags it heard held since the election began; ``remnant``: the held tags it
+    remembers inside the remnant's ``extent`` (hexagon of least and greatest tags along
+    the three axes, (3, 2) int, or None); ``silent``: sites that fell silent (a dead robot
+    may stand there); ``enclosed``: silent sites with live robots round them; ``fits``:
+    whether a placed shape ((P, 2) tags) lies inside the gene grids.
+    """
+
+    known: set[Tag]
+    remnant: set[Tag]
+    silent: set[Tag]
+    enclosed: set[Tag]
+    extent: np.ndarray | None
+    fits: Callable[[np.ndarray], bool]
+
+
+def choose_translation(cells: np.ndarray, leader: Tag, view: RemnantView) -> tuple[int, int] | None:
     """The translation (tx, ty) for the scaled shape ``cells`` ((P, 2) tags), or None when
     no translation fits the gene grids.
-
-    ``known``: tags the Leader heard held since the election began; ``remnant``: the held
-    tags it remembers inside the remnant's ``extent`` (hexagon of least and greatest tags
-    along the three axes, or None); ``silent``: sites that fell silent (a dead robot may
-    stand there); ``enclosed``: silent sites with live robots round them.
 
     First the translations that put a cell on the Leader's site, ranked by: seeded (the
     Leader and two adjacent known neighbours inside), fewest enclosed silent sites, most
@@ -64,17 +70,16 @@ def choose_translation(
     triangle of such sites, ranked the same way.
     """
     own = [(leader[0] - int(sx), leader[1] - int(sy)) for sx, sy in cells.tolist()]
-    held = known | {leader}
-    leader_triangles = triangles_at(leader, held)
-    best = _best(cells, own, leader_triangles, known, remnant, silent, enclosed, extent, fits)
+    held = view.known | {leader}
+    best = _best(cells, own, triangles_at(leader, held), view)
     if best is not None and best[0] == 0:
         return best[-2], best[-1]
     # sites it remembers held in the remnant count too: it heard few robots itself
-    held |= remnant
+    held |= view.remnant
     triangles = [t for tag in sorted(held) for t in triangles_at(tag, held)]
     if triangles:
         shifts = sorted({(kx - int(sx), ky - int(sy)) for kx, ky in held for sx, sy in cells})
-        anywhere = _best(cells, shifts, triangles, known, remnant, silent, enclosed, extent, fits)
+        anywhere = _best(cells, shifts, triangles, view)
         if anywhere is not None and anywhere[0] == 0:
             return anywhere[-2], anywhere[-1]
     return None if best is None else (best[-2], best[-1])
@@ -84,26 +89,22 @@ def _best(
     cells: np.ndarray,
     shifts: list[Tag],
     triangles: list[tuple[Tag, Tag, Tag]],
-    known: set[Tag],
-    remnant: set[Tag],
-    silent: set[Tag],
-    enclosed: set[Tag],
-    extent: np.ndarray | None,
-    fits: Callable[[np.ndarray], bool],
+    view: RemnantView,
 ) -> tuple[int, ...] | None:
     """The least ranking key (see ``choose_translation``) over ``shifts``, ending with the
     shift (tx, ty); None when no shift fits."""
     best: tuple[int, ...] | None = None
     for tx, ty in shifts:
         moved = cells + np.array([tx, ty])
-        if not fits(moved):
+        if not view.fits(moved):
             continue
         sites = {(int(x), int(y)) for x, y in moved.tolist()}
         seeded = any(all(c in sites for c in tri) for tri in triangles)
-        within = 0 if extent is None else int(cells_in(moved, extent).sum())
+        within = 0 if view.extent is None else int(cells_in(moved, view.extent).sum())
         key = (
-            0 if seeded else 1, len(sites & enclosed), -len(sites & remnant), -within,
-            -len(sites & known), len(sites & silent), abs(tx) + abs(ty), tx, ty,
+            0 if seeded else 1, len(sites & view.enclosed), -len(sites & view.remnant),
+            -within, -len(sites & view.known), len(sites & view.silent), abs(tx) + abs(ty),
+            tx, ty,
         )
         if best is None or key < best:
             best = key

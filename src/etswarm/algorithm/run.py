@@ -29,7 +29,7 @@ from etswarm.algorithm.memory import (
     R_WALK_TAGS,
 )
 from etswarm.algorithm.params import ETParams
-from etswarm.algorithm.placement import choose_translation
+from etswarm.algorithm.placement import RemnantView, choose_translation
 from etswarm.algorithm.silent import enclosed_tags, silent_tags
 from etswarm.algorithm.states import PLACED_STATES, STATE_NAMES, State
 from etswarm.damage import DamageSpec, apply_damage, parse_damage
@@ -282,9 +282,8 @@ class ETRun:
             remembered = sorted((ctl.remembered_tags(leader) | known) - silent)
             inside = cells_in(np.array(remembered).reshape(-1, 2), extent)
             remnant = {t for t, keep in zip(remembered, inside, strict=True) if keep}
-        shift = choose_translation(
-            cells, (lx, ly), known, remnant, silent, enclosed, extent, ctl.fits
-        )
+        view = RemnantView(known, remnant, silent, enclosed, extent, ctl.fits)
+        shift = choose_translation(cells, (lx, ly), view)
         if shift is None:
             return cells, 0, 0
         tx, ty = shift
