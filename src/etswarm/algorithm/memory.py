@@ -175,7 +175,11 @@ R_HOME_X = R_ODO_H + 1
 R_HOME_Y = R_HOME_X + 1
 R_ODO_PATH = R_HOME_Y + 1
 R_LOST_PATH = R_ODO_PATH + 1
-R_FIELDS = R_LOST_PATH + 1
+#: A placed robot's neighbour directions (bits as ``R_MASK``) whose holder it heard itself
+#: at its last evaluation with every neighbour accounted for (the others it knew of only
+#: through their neighbours' reports).
+R_SEEN_FULL = R_LOST_PATH + 1
+R_FIELDS = R_SEEN_FULL + 1
 
 PHASE_NORMAL = 0
 PHASE_ELECTING = 1

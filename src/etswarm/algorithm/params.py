@@ -51,7 +51,8 @@ C_TICKS_RANK_WAIT = 34  # a Queued robot waits for its queue rank at most this l
 C_EXTENT = 35  # 1: electing robots flood the remnant's extent for the scaled shape's placement
 C_OFFSETS = 36  # 1: placed robots estimate and send their offset from their site (``offsets``)
 C_LOST_HOMING = 37  # 1: a lost searcher circles where it last heard the group (``homing``)
-N_CI = 38
+C_REPORT_PATIENCE = 38  # 1: a Stable robot waits longer for neighbours it only knew by report
+N_CI = 39
 
 F_SPACING = 0  # lattice spacing d
 F_PAIR_TOL = 1  # two references within this of d trigger a site candidate
@@ -297,6 +298,12 @@ class ETParams:
     #: its odometry (``homing``). "off": it drives a fixed widening spiral of commands,
     #: whose centre every turn away from another robot moves.
     lost_homing: str = "on"
+    #: "on": a Stable robot whose count falls short only by neighbours it knew of through
+    #: their neighbours' reports (it did not hear them itself at its last complete count)
+    #: waits four Danger timeouts before it starts an election; "off": one, whatever it
+    #: lacks (the paper). Traced on `T` seed 43: a Stable robot whose neighbour stood
+    #: 101 mm away, known by report, elected with no damage when one report dropped.
+    report_patience: str = "on"
 
     def __post_init__(self) -> None:
         for f in fields(self):
@@ -307,6 +314,7 @@ class ETParams:
             elif f.name in (
                 "creep", "second_ring", "hole_memory", "fill_lookahead", "pocket", "queue_stride",
                 "silent_sites", "lost_beacon", "lost_yield", "site_offsets", "lost_homing",
+                "report_patience",
             ):
                 if value not in ("on", "off"):
                     raise EtswarmError(f"{f.name} must be 'on' or 'off', got {value!r}")
@@ -385,6 +393,7 @@ class ETParams:
         ci[C_EXTENT] = 1 if self.placement == "extent" and ci[C_GOSSIP_EVERY] > 0 else 0
         ci[C_OFFSETS] = 1 if self.site_offsets == "on" else 0
         ci[C_LOST_HOMING] = 1 if self.lost_homing == "on" else 0
+        ci[C_REPORT_PATIENCE] = 1 if self.report_patience == "on" else 0
         ci[C_QUEUE_STRIDE] = 1 if self.queue_stride == "on" else 0
         ci[C_SILENT_SITES] = 1 if self.silent_sites == "on" else 0
         ci[C_LOST_BEACON] = 1 if self.lost_beacon == "on" else 0

@@ -32,6 +32,7 @@ from etswarm.algorithm.memory import (
     R_NN,
     R_OFF_REFINE,
     R_QUASI_UNTIL,
+    R_SEEN_FULL,
     R_SINCE,
     R_STATE,
     R_TAG_X,
@@ -40,6 +41,7 @@ from etswarm.algorithm.memory import (
 )
 from etswarm.algorithm.offsets import refine_offset
 from etswarm.algorithm.params import (
+    C_REPORT_PATIENCE,
     C_TICKS_DANGER,
     C_TICKS_NB_FRESH,
     C_TICKS_QUASI,
@@ -49,6 +51,9 @@ from etswarm.algorithm.regeneration import start_election
 
 #: Inactive robots with no Active neighbour for this many evaluations become Active.
 INACTIVE_PATIENCE_TICKS = 31 * 60
+#: A Stable robot whose count falls short only by neighbours it knew of through their
+#: neighbours' reports (not heard itself) waits this many times the Danger timeout.
+REPORTED_PATIENCE = 4
 
 
 @njit(inline="always")
@@ -124,8 +129,10 @@ def placed_rule(i, tick, ri, nb, nb_dist, ci, cf):  # type: ignore[no-untyped-de
     # (Held sites are gene sites, so with all NN heard there is nothing left to report.)
     nn = ri[i, R_NN]
     count = bit_count(seen_dirs)
+    known_dirs = seen_dirs
     if count < nn:
-        count = bit_count(seen_dirs | reported_dirs(i, tick, ri, nb, fresh, seen_dirs))
+        known_dirs = seen_dirs | reported_dirs(i, tick, ri, nb, fresh, seen_dirs)
+        count = bit_count(known_dirs)
     ri[i, R_COUNT] = count
     ri[i, R_MASK] = seen_dirs
     if state == STABLE:
@@ -151,9 +158,17 @@ def placed_rule(i, tick, ri, nb, nb_dist, ci, cf):  # type: ignore[no-untyped-de
         if tick >= ri[i, R_QUASI_UNTIL]:
             set_state(i, ri, ACTIVE, tick)
     elif state == STABLE:
+        # A neighbour it knew of only through reports (its holder stands out of its range
+        # where the lattice has stretched) may drop out of the reports for a while without
+        # any damage: when only such neighbours are missing, wait longer
+        # (``REPORTED_PATIENCE``). One it heard itself that falls silent is damage.
+        patience = ci[C_TICKS_DANGER]
+        if ci[C_REPORT_PATIENCE] == 1 and (ri[i, R_SEEN_FULL] & ~known_dirs & 63) == 0:
+            patience *= REPORTED_PATIENCE
         if count >= nn:
+            ri[i, R_SEEN_FULL] = seen_dirs
             ri[i, R_BELOW_SINCE] = -1
         elif ri[i, R_BELOW_SINCE] < 0:
             ri[i, R_BELOW_SINCE] = tick
-        elif tick - ri[i, R_BELOW_SINCE] >= ci[C_TICKS_DANGER]:
+        elif tick - ri[i, R_BELOW_SINCE] >= patience:
             start_election(i, tick, ri, ci)

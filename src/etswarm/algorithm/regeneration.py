@@ -82,6 +82,7 @@ from etswarm.algorithm.memory import (
     R_QMIN_SINCE,
     R_RELEASED,
     R_REQUEST,
+    R_SEEN_FULL,
     R_SETTLED_COUNT,
     R_SETTLED_SINCE,
     R_SHAPE_HOPS,
@@ -281,6 +282,7 @@ def adopt_target(i, tick, ri, nb, slot, epoch, leader, gene_flag, gene_nn, slot_
     ri[i, R_BELOW_SINCE] = -1
     ri[i, R_COUNT] = 0
     ri[i, R_MASK] = 0  # what it observed was of the old target (see ``search.search_rule``)
+    ri[i, R_SEEN_FULL] = 0
     ri[i, R_SILENT_N] = 0  # the silent sites were for this election
     x = ri[i, R_TAG_X]
     y = ri[i, R_TAG_Y]

@@ -61,6 +61,7 @@ from etswarm.algorithm.memory import (
     R_REF_ID,
     R_REF_MOVED,
     R_REF_TREND,
+    R_SEEN_FULL,
     R_SETTLE_TRIES,
     R_SHAPE_SINCE,
     R_SUB,
@@ -761,6 +762,7 @@ def search_rule(  # type: ignore[no-untyped-def]
             # held before a regeneration, sent before its first evaluation, would make
             # its neighbours count sites that nobody holds.
             ri[i, R_MASK] = 0
+            ri[i, R_SEEN_FULL] = 0
             ri[i, R_BELOW_SINCE] = -1
         else:
             ri[i, R_SUB] = SUB_FOLLOW
