@@ -158,17 +158,18 @@ def placed_rule(i, tick, ri, nb, nb_dist, ci, cf):  # type: ignore[no-untyped-de
         if tick >= ri[i, R_QUASI_UNTIL]:
             set_state(i, ri, ACTIVE, tick)
     elif state == STABLE:
-        # A neighbour it knew of only through reports (its holder stands out of its range
-        # where the lattice has stretched) may drop out of the reports for a while without
-        # any damage: when only such neighbours are missing, wait longer
-        # (``REPORTED_PATIENCE``). One it heard itself that falls silent is damage.
-        patience = ci[C_TICKS_DANGER]
-        if ci[C_REPORT_PATIENCE] == 1 and (ri[i, R_SEEN_FULL] & ~known_dirs & 63) == 0:
-            patience *= REPORTED_PATIENCE
         if count >= nn:
             ri[i, R_SEEN_FULL] = seen_dirs
             ri[i, R_BELOW_SINCE] = -1
         elif ri[i, R_BELOW_SINCE] < 0:
             ri[i, R_BELOW_SINCE] = tick
-        elif tick - ri[i, R_BELOW_SINCE] >= patience:
-            start_election(i, tick, ri, ci)
+        else:
+            # A neighbour it knew of only through reports (its holder stands out of its
+            # range where the lattice has stretched) may drop out of the reports for a
+            # while without any damage: when only such neighbours are missing, wait longer
+            # (``REPORTED_PATIENCE``). One it heard itself that falls silent is damage.
+            patience = ci[C_TICKS_DANGER]
+            if ci[C_REPORT_PATIENCE] == 1 and (ri[i, R_SEEN_FULL] & ~known_dirs & 63) == 0:
+                patience *= REPORTED_PATIENCE
+            if tick - ri[i, R_BELOW_SINCE] >= patience:
+                start_election(i, tick, ri, ci)
