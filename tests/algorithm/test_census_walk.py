@@ -126,8 +126,8 @@ class WatchedRun(ETRun):
 
 def test_walk_census_on_a_split_triangle() -> None:
     config = RunConfig(
-        # seed 2: both Leaders have two or more lattice neighbours in their remnants
-        shape="triangle", seed=2, max_time_s=3 * 3600, damage=("split x=0 at=formed+30",),
+        # seed 9: both Leaders have two or more lattice neighbours in their remnants
+        shape="triangle", seed=9, max_time_s=3 * 3600, damage=("split x=0 at=formed+30",),
         census="walk",
     )
     run = WatchedRun(config)

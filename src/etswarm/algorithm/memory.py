@@ -179,7 +179,10 @@ R_LOST_PATH = R_ODO_PATH + 1
 #: at its last evaluation with every neighbour accounted for (the others it knew of only
 #: through their neighbours' reports).
 R_SEEN_FULL = R_LOST_PATH + 1
-R_FIELDS = R_SEEN_FULL + 1
+#: Sites a searcher refused since it left the repository because it stood too far into
+#: a free neighbour site (``pinch``).
+R_PINCH_REFUSED = R_SEEN_FULL + 1
+R_FIELDS = R_PINCH_REFUSED + 1
 
 PHASE_NORMAL = 0
 PHASE_ELECTING = 1

@@ -149,22 +149,11 @@ def from_anchor(i, j, px, py, nb, d):  # type: ignore[no-untyped-def]
 
 
 @njit
-def estimate_offset(i, tick, cx, cy, since, nb, nb_dist, ri, ci, d):  # type: ignore[no-untyped-def]
-    """Robot i has just taken site (cx, cy): estimate where it stands from the placed robots
-    it read since ``since`` (least squares, Gauss-Newton from the site's centre) and keep
-    its offset from the centre (R_OFF_X, R_OFF_Y; 0 with fewer than two such robots or
-    with offsets off). It goes on refining it (``refine_offset``) while not Stable."""
-    ri[i, R_OFF_X] = 0
-    ri[i, R_OFF_Y] = 0
-    ri[i, R_OFF_REFINE] = 0
-    if ci[C_OFFSETS] == 0:
-        return
-    ri[i, R_OFF_REFINE] = 1
-    ri[i, R_OFF_TICK] = tick
-    px0 = site_x(cx, cy, d)
-    py0 = site_y(cy, d)
-    px = px0
-    py = py0
+def locate(i, since, px, py, nb, nb_dist, d):  # type: ignore[no-untyped-def]
+    """Where robot i stands (gene frame, mm) by least squares on its latest readings of the
+    placed robots it read since ``since`` (``is_anchor``), by Gauss-Newton steps from the
+    guess (px, py). Returns ``(ok, x, y)``; ``ok`` is False with fewer than two such
+    robots or with all of them in one line from it."""
     for _ in range(ESTIMATE_STEPS):
         # normal equations of the linearised residuals reading_j - |p - q_j|
         a11 = 0.0
@@ -188,9 +177,30 @@ def estimate_offset(i, tick, cx, cy, since, nb, nb_dist, ri, ci, d):  # type: ig
             n += 1
         det = a11 * a22 - a12 * a12
         if n < 2 or det < 1e-3:
-            return  # too few robots, or all in one line from it: refine from the centre
+            return False, px, py
         px += (a22 * b1 - a12 * b2) / det
         py += (a11 * b2 - a12 * b1) / det
+    return True, px, py
+
+
+@njit
+def estimate_offset(i, tick, cx, cy, since, nb, nb_dist, ri, ci, d):  # type: ignore[no-untyped-def]
+    """Robot i has just taken site (cx, cy): estimate where it stands from the placed robots
+    it read since ``since`` (``locate`` from the site's centre) and keep its offset from
+    the centre (R_OFF_X, R_OFF_Y; 0 with fewer than two such robots or with offsets off).
+    It goes on refining it (``refine_offset``) while not Stable."""
+    ri[i, R_OFF_X] = 0
+    ri[i, R_OFF_Y] = 0
+    ri[i, R_OFF_REFINE] = 0
+    if ci[C_OFFSETS] == 0:
+        return
+    ri[i, R_OFF_REFINE] = 1
+    ri[i, R_OFF_TICK] = tick
+    px0 = site_x(cx, cy, d)
+    py0 = site_y(cy, d)
+    ok, px, py = locate(i, since, px0, py0, nb, nb_dist, d)
+    if not ok:
+        return  # too few robots, or all in one line from it: refine from the centre
     ri[i, R_OFF_X] = round((px - px0) * FINE_PER_MM)
     ri[i, R_OFF_Y] = round((py - py0) * FINE_PER_MM)
 

@@ -52,7 +52,8 @@ C_EXTENT = 35  # 1: electing robots flood the remnant's extent for the scaled sh
 C_OFFSETS = 36  # 1: placed robots estimate and send their offset from their site (``offsets``)
 C_LOST_HOMING = 37  # 1: a lost searcher circles where it last heard the group (``homing``)
 C_REPORT_PATIENCE = 38  # 1: a Stable robot waits longer for neighbours it only knew by report
-N_CI = 39
+C_PINCH_REFUSALS = 39  # a searcher refuses at most this many sites that would pinch a free one
+N_CI = 40
 
 F_SPACING = 0  # lattice spacing d
 F_PAIR_TOL = 1  # two references within this of d trigger a site candidate
@@ -77,7 +78,8 @@ F_ODO_STEP = 18  # forward travel per tick, mm
 F_ODO_TURN = 19  # pivot per tick, rad
 F_ODO_LEG = 20  # angle of the pivot legs from the heading, rad
 F_ODO_RADIUS = 21  # body radius (legs on the rim), mm
-N_CF = 22
+F_CAPTURE_PINCH = 22  # a searcher takes no site from this far (mm) into a free neighbour site
+N_CF = 23
 
 #: The DESIGN section 2 robot: 7 mm/s, 13 deg/s, legs at 125.5 deg, radius 16.5 mm.
 NOMINAL_MOTION = (7.0, 13.0, 125.5, 16.5)
@@ -96,7 +98,8 @@ NON_NEGATIVE: frozenset[str] = frozenset(
     {
         "pair_aim_relax_s", "settle_retries", "regrowth_settle_retries", "release_hold_s",
         "regrowth_hover_s", "regrowth_crowded_s", "regrowth_dive_mm",
-        "dive_mm", "held_gossip_every", "queue_rank_wait_s",
+        "dive_mm", "held_gossip_every", "queue_rank_wait_s", "capture_pinch_mm",
+        "capture_pinch_refusals",
     }
 )
 #: Parameters that may take any sign.
@@ -304,6 +307,14 @@ class ETParams:
     #: lacks (the paper). Traced on `T` seed 43: a Stable robot whose neighbour stood
     #: 101 mm away, known by report, elected with no damage when one report dropped.
     report_patience: str = "on"
+    #: A searcher confirming a site does not take it when its own position estimate puts
+    #: it this far (mm) or more into a free neighbour site of the gene that has another
+    #: neighbour held (``pinch``); 0: it takes any site its window confirms. First
+    #: formations, 13 shapes, seeds 30-89: 753 of 780 formed against 739 with 0.
+    capture_pinch_mm: float = 10.0
+    #: ... and refuses at most this many sites so between leaving the repository and
+    #: taking one: where the lattice is stretched every capture may stand far off.
+    capture_pinch_refusals: int = 2
 
     def __post_init__(self) -> None:
         for f in fields(self):
@@ -424,6 +435,8 @@ class ETParams:
         cf[F_BALANCE_TOL] = self.balance_tol_mm
         cf[F_WALK_COLLECT] = self.census_collect_mm
         cf[F_OFFSET_TRUST] = self.offset_trust
+        cf[F_CAPTURE_PINCH] = self.capture_pinch_mm
+        ci[C_PINCH_REFUSALS] = self.capture_pinch_refusals
         speed_mm_s, turn_deg_s, leg_deg, radius_mm = nominal_motion
         cf[F_ODO_STEP] = speed_mm_s / ticks_per_s
         cf[F_ODO_TURN] = math.radians(turn_deg_s) / ticks_per_s

@@ -57,6 +57,7 @@ from etswarm.algorithm.memory import (
     R_NN,
     R_ON_SHAPE,
     R_ORBIT,
+    R_PINCH_REFUSED,
     R_RECENT0,
     R_REF_ID,
     R_REF_MOVED,
@@ -88,6 +89,7 @@ from etswarm.algorithm.params import (
     C_LOST_YIELD,
     C_OFFSETS,
     C_ORBIT_BOUNCE,
+    C_PINCH_REFUSALS,
     C_POCKET,
     C_QUEUE_STRIDE,
     C_REGROW_RETRIES,
@@ -116,6 +118,7 @@ from etswarm.algorithm.params import (
     F_WIDEN_TICKS,
     F_YIELD_DIST,
 )
+from etswarm.algorithm.pinch import would_pinch
 from etswarm.algorithm.pocket import POCKET_AFTER_TICKS, pocket_site
 from etswarm.algorithm.site_memory import is_held, remember_heard, shuts_in, site_taken
 
@@ -191,6 +194,7 @@ def begin_search(i, tick, ri):  # type: ignore[no-untyped-def]
     ri[i, R_FROM_ID] = -1
     reset_odometry(i, ri)
     ri[i, R_REF_MOVED] = 0
+    ri[i, R_PINCH_REFUSED] = 0
     forget_recent_references(i, ri)
 
 
@@ -749,6 +753,13 @@ def search_rule(  # type: ignore[no-untyped-def]
             )
             same = found and cx == ri[i, R_CAND_X] and cy == ri[i, R_CAND_Y]
             same = same and not reported_but_unheard(i, cx, cy, since, nb)
+        if (
+            same
+            and ri[i, R_PINCH_REFUSED] < ci[C_PINCH_REFUSALS]
+            and would_pinch(i, cx, cy, since, nb, nb_dist, gene_flag, ci, cf, held_i, ox, oy)
+        ):
+            same = False  # from here it would narrow a free site: it moves on
+            ri[i, R_PINCH_REFUSED] += 1
         if same:
             set_state(i, ri, INACTIVE, tick)
             ri[i, R_TAG_X] = cx

@@ -1,0 +1,114 @@
+"""A searcher does not take a site from where it would pinch a free neighbour site.
+
+Pinched last sites were the main way first formations stalled after session 18: 32 of
+the 40 unformed runs over 13 shapes (seeds 30-89) ended with a free site whose placed
+neighbours stood 15-20 mm into it, so that no 33 mm body fits there (disc seed 34:
+the best point of the free site (-3, 0) keeps 28.8 mm from every body). Regrowths stall
+the same way: most unformed remnants end with one to four free sites and as many
+searchers beside them.
+
+Those robots were captured there: a searcher long at the shape widens its pair window
+(``ETParams.widen_max``) and may take a site from 10-15 mm off its centre. A placed
+robot cannot put that right: it has no compass and no reverse gear, it turns only by
+pivoting about a leg on its rim (its centre swings on a 16.5 mm circle), and between
+its neighbours there is room for a few mm of that (branch ``exp/reseat``, session 19).
+A searcher can: it is still on the move.
+
+With ``ETParams.capture_pinch_mm`` = P > 0 (default 10), a searcher confirming a site
+estimates where it stands (``offsets.locate``, the estimate it would keep as its offset)
+and does not take the site when that puts it P mm or more into a free neighbour site of
+the gene (one it knows no robot to hold: not in its table, not reported, not in its
+memory of held sites) that has ``NOTCH_HELD`` or more neighbour sites held once the
+searcher takes its own, so that a later searcher has to come in between placed robots.
+It moves on as after any failed confirmation. A searcher refuses at most
+``ETParams.capture_pinch_refusals`` (default 2) sites between leaving the repository and
+taking one: where the lattice is stretched, every capture may stand far off.
+
+Measured over 13 shapes, seeds 30-49 (4 h limit; the defaults before formed 241 of 260):
+
+- every free neighbour site counting, no limit on refusals: 232 (disc 19, heart 20,
+  dumbbell 20 of 20, but plus 12 and starfish 10 against 19 and 17: the tips of growing
+  arms, and stretched corners where every capture stands far off, were refused for ever);
+- the same with P = 14 mm: 236;
+- free sites with three held neighbours: 243; with two: 244;
+- with two, and at most two refusals: 250 (every shape 18 or more but starfish, 16).
+"""
+
+from __future__ import annotations
+
+from numba import njit
+
+from etswarm.algorithm.kernel_util import DIR_X, DIR_Y, HALF_SQRT3, gene_at
+from etswarm.algorithm.offsets import locate, site_x, site_y
+from etswarm.algorithm.params import C_OFFSETS, F_CAPTURE_PINCH, F_SPACING
+from etswarm.algorithm.site_memory import is_held, site_taken
+
+#: A free neighbour site counts when this many of its neighbour sites are held once the
+#: searcher takes its site.
+NOTCH_HELD = 2
+
+
+@njit(inline="always")
+def toward_free(ox, oy, cx, cy, free_mask):  # type: ignore[no-untyped-def]
+    """The largest component (mm) of the offset (ox, oy) (mm, gene frame) from site
+    (cx, cy)'s centre towards one of its neighbour sites in ``free_mask`` (bit k for
+    lattice direction k); -1e9 when the mask is empty."""
+    worst = -1e9
+    for k in range(6):
+        if (free_mask >> k) & 1:
+            # unit vector of direction k in the gene frame: (DX - DY / 2, DY sqrt(3) / 2)
+            ux = DIR_X[k] - 0.5 * DIR_Y[k]
+            uy = HALF_SQRT3 * DIR_Y[k]
+            worst = max(worst, ox * ux + oy * uy)
+    return worst
+
+
+@njit
+def known_held(i, x, y, nb, held_i, wx, wy):  # type: ignore[no-untyped-def]
+    """Robot i knows site (x, y) held: in its table, reported by a neighbour, or in its
+    memory ``held_i`` (window origin at tag (wx, wy))."""
+    return site_taken(i, x, y, nb) or is_held(held_i, x, y, wx, wy)
+
+
+@njit
+def free_neighbours(i, cx, cy, nb, gene_flag, ci, held_i, wx, wy):  # type: ignore[no-untyped-def]
+    """Bits k of site (cx, cy)'s neighbour sites of the gene that robot i knows of no
+    robot holding (``known_held``) and that, once (cx, cy) is held, have at least
+    ``NOTCH_HELD`` neighbour sites held: a free site that a searcher has to enter between
+    placed robots. (A free site on an open edge, as at the tip of a growing arm, is
+    reached from outside whatever stands next to it.)"""
+    mask = 0
+    for k in range(6):
+        x = cx + DIR_X[k]
+        y = cy + DIR_Y[k]
+        if gene_at(gene_flag, ci, x, y) != 1 or known_held(i, x, y, nb, held_i, wx, wy):
+            continue
+        n_held = 1  # (cx, cy) itself
+        for kk in range(6):
+            nx = x + DIR_X[kk]
+            ny = y + DIR_Y[kk]
+            if (nx != cx or ny != cy) and known_held(i, nx, ny, nb, held_i, wx, wy):
+                n_held += 1
+        if n_held >= NOTCH_HELD:
+            mask |= 1 << k
+    return mask
+
+
+@njit
+def would_pinch(i, cx, cy, since, nb, nb_dist, gene_flag, ci, cf, held_i, wx, wy):  # type: ignore[no-untyped-def]
+    """Robot i, confirming site (cx, cy) on readings since ``since``, stands
+    ``capture_pinch_mm`` or more into a free neighbour site (see module). False with the
+    rule off, with offsets off, or when it cannot locate itself."""
+    limit = cf[F_CAPTURE_PINCH]
+    if limit <= 0.0 or ci[C_OFFSETS] == 0:
+        return False
+    free = free_neighbours(i, cx, cy, nb, gene_flag, ci, held_i, wx, wy)
+    if free == 0:
+        return False
+    d = cf[F_SPACING]
+    x0 = site_x(cx, cy, d)
+    y0 = site_y(cy, d)
+    ok, x, y = locate(i, since, x0, y0, nb, nb_dist, d)
+    if not ok:
+        return False
+    return toward_free(x - x0, y - y0, cx, cy, free) >= limit

@@ -1,0 +1,141 @@
+"""A searcher does not take a site from where it would pinch a free neighbour site.
+
+Robot 0 confirms site (0, 0); the holders of its neighbour sites in directions 1-5
+stand on their centres, the site in direction 0 is free. It stands ``into`` mm from
+(0, 0) towards that free site and reads its neighbours without noise.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from etswarm.algorithm.kernel_util import DIR_X, DIR_Y, STABLE
+from etswarm.algorithm.memory import NB_ID, NB_LAST, NB_STATE, NB_TX, NB_TY, allocate
+from etswarm.algorithm.params import ETParams
+from etswarm.algorithm.pinch import NOTCH_HELD, free_neighbours, toward_free, would_pinch
+from etswarm.shapes.lattice import tags_to_xy
+
+D = 40.0
+HELD_DIRS = (1, 2, 3, 4, 5)
+GENE = np.ones((7, 7), dtype=np.int64)  # tags -3 .. 3 (gene origin at (-3, -3))
+EMPTY_MEMORY = np.zeros((9, 9), dtype=np.uint8)  # window origin at tag (-4, -4)
+
+
+def direction_xy(k: int) -> np.ndarray:
+    """Gene-frame centre (mm, (2,)) of (0, 0)'s neighbour site in direction k."""
+    return tags_to_xy(np.array([(DIR_X[k], DIR_Y[k])]), D)[0]
+
+
+def confirming(into: float) -> tuple[np.ndarray, np.ndarray]:
+    """Robot 0's table, ``into`` mm from (0, 0) towards direction 0: ``(nb, nb_dist)``."""
+    _, nb, nb_dist = allocate(1)
+    here = into * direction_xy(0) / D
+    for slot, k in enumerate(HELD_DIRS):
+        nb[0, slot, NB_ID] = 1 + slot
+        nb[0, slot, NB_STATE] = STABLE
+        nb[0, slot, NB_TX] = DIR_X[k]
+        nb[0, slot, NB_TY] = DIR_Y[k]
+        nb[0, slot, NB_LAST] = 10
+        nb_dist[0, slot] = float(np.hypot(*(direction_xy(k) - here)))
+    return nb, nb_dist
+
+
+def pinches(into: float, limit: float, memory: np.ndarray = EMPTY_MEMORY) -> bool:
+    """Whether robot 0, ``into`` mm towards the free site, may not take (0, 0)."""
+    ci, cf = ETParams(capture_pinch_mm=limit).pack(31, -3, -3)
+    nb, nb_dist = confirming(into)
+    return bool(would_pinch(0, 0, 0, 5, nb, nb_dist, GENE, ci, cf, memory, -4, -4))
+
+
+def test_the_offset_towards_a_free_site() -> None:
+    ux, uy = direction_xy(2) / D  # direction 2 is tag (1, 0), along x
+    assert toward_free(12.0 * ux, 12.0 * uy, 0, 0, 1 << 2) == pytest.approx(12.0)
+    assert toward_free(12.0, 0.0, 0, 0, 1 << 5) == pytest.approx(-12.0)  # away from it
+    assert toward_free(12.0, 0.0, 0, 0, 0) < -1e8  # no free site
+
+
+def test_free_neighbours_are_those_nobody_is_known_to_hold() -> None:
+    nb, _ = confirming(0.0)
+    assert free_neighbours(0, 0, 0, nb, GENE, ETParams().pack(31, -3, -3)[0],
+                           EMPTY_MEMORY, -4, -4) == 1 << 0
+    remembered = EMPTY_MEMORY.copy()
+    remembered[DIR_X[0] + 4, DIR_Y[0] + 4] = 1
+    assert free_neighbours(0, 0, 0, nb, GENE, ETParams().pack(31, -3, -3)[0],
+                           remembered, -4, -4) == 0
+
+
+@pytest.mark.parametrize(("into", "limit", "expected"), [
+    (14.0, 10.0, True),   # deep into the free site: it moves on
+    (6.0, 10.0, False),   # a few mm off, as most captures are
+    (14.0, 0.0, False),   # the rule off
+])
+def test_a_capture_deep_into_a_free_site_is_refused(into: float, limit: float,
+                                                    expected: bool) -> None:
+    assert pinches(into, limit) is expected
+
+
+def test_a_capture_next_to_no_free_site_is_never_refused() -> None:
+    remembered = EMPTY_MEMORY.copy()
+    remembered[DIR_X[0] + 4, DIR_Y[0] + 4] = 1  # the site in direction 0 is held
+    assert not pinches(14.0, 10.0, remembered)
+
+
+def test_a_free_site_counts_once_enough_of_its_neighbours_are_held() -> None:
+    ci = ETParams().pack(31, -3, -3)[0]
+    nb, _ = confirming(0.0)
+    # The free site in direction 0, (0, 1), has two neighbours among (0, 0)'s: (1, 1)
+    # (direction 1) and (-1, 0) (direction 5). Without their holders only (0, 0) itself
+    # is held next to it: the tip of an arm, reached from outside.
+    nb[0, HELD_DIRS.index(1), NB_ID] = -1
+    nb[0, HELD_DIRS.index(5), NB_ID] = -1
+    counted = []
+    for restored in (None, 1, 5):
+        if restored is not None:
+            nb[0, HELD_DIRS.index(restored), NB_ID] = restored
+        mask = free_neighbours(0, 0, 0, nb, GENE, ci, EMPTY_MEMORY, -4, -4)
+        counted.append(bool(mask & 1))
+    held_next_to_it = np.array([1, 2, 3])
+    assert counted == list(held_next_to_it >= NOTCH_HELD)
+    assert counted[0] is False and counted[-1] is True
+
+
+def nearest_to_a_free_site_mm(run) -> float:  # type: ignore[no-untyped-def]
+    """Over the target's free sites at the end of ``run``: the least distance (mm) from a
+    free site's centre (the rigid fit of the placed robots' tags) to a robot holding a
+    neighbour site of it."""
+    from etswarm.measures.formation import apply_fit, rigid_fit
+    from etswarm.shapes.lattice import NEIGHBOUR_OFFSETS
+
+    states = run.controller.states
+    live = run.world.present & run.world.alive
+    placed = np.flatnonzero(live & (states >= 2) & (states <= 7))
+    tags = run.controller.tags[placed]
+    holder = {tuple(int(v) for v in t): r for t, r in zip(tags, placed, strict=True)}
+    fit = rigid_fit(tags_to_xy(tags, D), run.world.pos[placed])
+    nearest = np.inf
+    for cell in (tuple(int(v) for v in c) for c in run.target):
+        if cell in holder:
+            continue
+        centre = apply_fit(fit, tags_to_xy(np.array([cell]), D))[0]
+        for dx, dy in NEIGHBOUR_OFFSETS:
+            r = holder.get((cell[0] + dx, cell[1] + dy))
+            if r is not None:
+                nearest = min(nearest, float(np.hypot(*(run.world.pos[r] - centre))))
+    return nearest
+
+
+@pytest.mark.parametrize(("shape", "seed"), [("heart", 39), ("hexagon", 33)])
+def test_refusing_pinching_captures_lets_the_last_sites_fill(shape: str, seed: int) -> None:
+    from etswarm.algorithm.run import ETRun, RunConfig
+
+    # Without the rule the run stalls with a robot 36 mm or nearer a free site's centre
+    # (a body is 33 mm across): no searcher fits in.
+    off = ETRun(RunConfig(shape=shape, seed=seed, max_time_s=4 * 3600,
+                          et=ETParams(capture_pinch_mm=0.0)))
+    assert not off.run()["formed"]
+    assert nearest_to_a_free_site_mm(off) < 36.0
+    # With it the same swarm forms the shape.
+    summary = ETRun(RunConfig(shape=shape, seed=seed, max_time_s=4 * 3600)).run()
+    assert summary["formed"] and summary["jaccard"] == 1.0
+    assert summary["duplicate_tags"] == []
