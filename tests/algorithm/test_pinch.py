@@ -139,3 +139,18 @@ def test_refusing_pinching_captures_lets_the_last_sites_fill(shape: str, seed: i
     summary = ETRun(RunConfig(shape=shape, seed=seed, max_time_s=4 * 3600)).run()
     assert summary["formed"] and summary["jaccard"] == 1.0
     assert summary["duplicate_tags"] == []
+
+
+def test_the_viewer_shows_a_searchers_refusals() -> None:
+    from etswarm.algorithm.live import ETLive
+    from etswarm.algorithm.memory import R_PINCH_REFUSED
+    from etswarm.algorithm.run import ETRun, RunConfig
+
+    live = ETLive(ETRun(RunConfig(shape="triangle", seed=0, max_time_s=3600)))
+    states = live.run.controller.states
+    while not (states == 1).any():
+        live.advance(31 * 10)
+    searcher = int(np.flatnonzero(states == 1)[0])
+    live.run.controller.ri[searcher, R_PINCH_REFUSED] = 2
+    assert live.robot_info(searcher)["pinch_refusals"] == 2
+    assert live.robot_info(int(np.flatnonzero(states == 0)[0]))["pinch_refusals"] == "-"

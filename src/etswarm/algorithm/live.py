@@ -21,6 +21,7 @@ from etswarm.algorithm.memory import (
     R_ODO_Y,
     R_OFF_X,
     R_OFF_Y,
+    R_PINCH_REFUSED,
     R_TS,
 )
 from etswarm.algorithm.offsets import FINE_PER_MM
@@ -116,6 +117,9 @@ class ETLive:
                 if searching and lost_since > 0 else "-"
             ),
             "from_home_mm": f"{from_home / ODO_PER_MM:.0f}" if searching else "-",
+            # sites it refused since it left the repository: it stood too far into a
+            # free notch site next to them (``pinch``)
+            "pinch_refusals": int(ri[i, R_PINCH_REFUSED]) if searching else "-",
             "neighbours": table,
         }
 
