@@ -50,9 +50,9 @@ def pinches(into: float, limit: float, memory: np.ndarray = EMPTY_MEMORY) -> boo
 
 def test_the_offset_towards_a_free_site() -> None:
     ux, uy = direction_xy(2) / D  # direction 2 is tag (1, 0), along x
-    assert toward_free(12.0 * ux, 12.0 * uy, 0, 0, 1 << 2) == pytest.approx(12.0)
-    assert toward_free(12.0, 0.0, 0, 0, 1 << 5) == pytest.approx(-12.0)  # away from it
-    assert toward_free(12.0, 0.0, 0, 0, 0) < -1e8  # no free site
+    assert toward_free(12.0 * ux, 12.0 * uy, 1 << 2) == pytest.approx(12.0)
+    assert toward_free(12.0, 0.0, 1 << 5) == pytest.approx(-12.0)  # away from it
+    assert toward_free(12.0, 0.0, 0) < -1e8  # no free site
 
 
 def test_free_neighbours_are_those_nobody_is_known_to_hold() -> None:

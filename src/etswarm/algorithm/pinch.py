@@ -38,7 +38,7 @@ from __future__ import annotations
 
 from numba import njit
 
-from etswarm.algorithm.kernel_util import DIR_X, DIR_Y, HALF_SQRT3, gene_at
+from etswarm.algorithm.kernel_util import DIR_X, DIR_Y, gene_at
 from etswarm.algorithm.offsets import locate, site_x, site_y
 from etswarm.algorithm.params import C_OFFSETS, F_CAPTURE_PINCH, F_SPACING
 from etswarm.algorithm.site_memory import is_held, site_taken
@@ -49,22 +49,22 @@ NOTCH_HELD = 2
 
 
 @njit(inline="always")
-def toward_free(ox, oy, cx, cy, free_mask):  # type: ignore[no-untyped-def]
-    """The largest component (mm) of the offset (ox, oy) (mm, gene frame) from site
-    (cx, cy)'s centre towards one of its neighbour sites in ``free_mask`` (bit k for
-    lattice direction k); -1e9 when the mask is empty."""
+def toward_free(ox, oy, free_mask):  # type: ignore[no-untyped-def]
+    """The largest component (mm) of the offset (ox, oy) (mm, gene frame) from a site's
+    centre towards one of its neighbour sites in ``free_mask`` (bit k for lattice
+    direction k); -1e9 when the mask is empty."""
     worst = -1e9
     for k in range(6):
         if (free_mask >> k) & 1:
-            # unit vector of direction k in the gene frame: (DX - DY / 2, DY sqrt(3) / 2)
-            ux = DIR_X[k] - 0.5 * DIR_Y[k]
-            uy = HALF_SQRT3 * DIR_Y[k]
+            # direction k's unit vector is the centre of tag (DX, DY) at spacing 1
+            ux = site_x(DIR_X[k], DIR_Y[k], 1.0)
+            uy = site_y(DIR_Y[k], 1.0)
             worst = max(worst, ox * ux + oy * uy)
     return worst
 
 
 @njit
-def known_held(i, x, y, nb, held_i, wx, wy):  # type: ignore[no-untyped-def]
+def held_for_all_i_knows(i, x, y, nb, held_i, wx, wy):  # type: ignore[no-untyped-def]
     """Robot i knows site (x, y) held: in its table, reported by a neighbour, or in its
     memory ``held_i`` (window origin at tag (wx, wy))."""
     return site_taken(i, x, y, nb) or is_held(held_i, x, y, wx, wy)
@@ -73,7 +73,7 @@ def known_held(i, x, y, nb, held_i, wx, wy):  # type: ignore[no-untyped-def]
 @njit
 def free_neighbours(i, cx, cy, nb, gene_flag, ci, held_i, wx, wy):  # type: ignore[no-untyped-def]
     """Bits k of site (cx, cy)'s neighbour sites of the gene that robot i knows of no
-    robot holding (``known_held``) and that, once (cx, cy) is held, have at least
+    robot holding (``held_for_all_i_knows``) and that, once (cx, cy) is held, have at least
     ``NOTCH_HELD`` neighbour sites held: a free site that a searcher has to enter between
     placed robots. (A free site on an open edge, as at the tip of a growing arm, is
     reached from outside whatever stands next to it.)"""
@@ -81,13 +81,13 @@ def free_neighbours(i, cx, cy, nb, gene_flag, ci, held_i, wx, wy):  # type: igno
     for k in range(6):
         x = cx + DIR_X[k]
         y = cy + DIR_Y[k]
-        if gene_at(gene_flag, ci, x, y) != 1 or known_held(i, x, y, nb, held_i, wx, wy):
+        if gene_at(gene_flag, ci, x, y) != 1 or held_for_all_i_knows(i, x, y, nb, held_i, wx, wy):
             continue
         n_held = 1  # (cx, cy) itself
         for kk in range(6):
             nx = x + DIR_X[kk]
             ny = y + DIR_Y[kk]
-            if (nx != cx or ny != cy) and known_held(i, nx, ny, nb, held_i, wx, wy):
+            if (nx != cx or ny != cy) and held_for_all_i_knows(i, nx, ny, nb, held_i, wx, wy):
                 n_held += 1
         if n_held >= NOTCH_HELD:
             mask |= 1 << k
@@ -111,4 +111,4 @@ def would_pinch(i, cx, cy, since, nb, nb_dist, gene_flag, ci, cf, held_i, wx, wy
     ok, x, y = locate(i, since, x0, y0, nb, nb_dist, d)
     if not ok:
         return False
-    return toward_free(x - x0, y - y0, cx, cy, free) >= limit
+    return toward_free(x - x0, y - y0, free) >= limit
