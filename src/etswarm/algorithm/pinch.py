@@ -21,8 +21,9 @@ the gene (one it knows no robot to hold: not in its table, not reported, not in 
 memory of held sites) that has ``NOTCH_HELD`` or more neighbour sites held once the
 searcher takes its own, so that a later searcher has to come in between placed robots.
 It moves on as after any failed confirmation. A searcher refuses at most
-``ETParams.capture_pinch_refusals`` (default 2) sites between leaving the repository and
-taking one: where the lattice is stretched, every capture may stand far off.
+``ETParams.capture_pinch_refusals`` (default 4; 2 until session 20, when windows came to
+widen three times faster) sites between leaving the repository and taking one: where the
+lattice is stretched, every capture may stand far off.
 
 Measured over 13 shapes, seeds 30-49 (4 h limit; the defaults before formed 241 of 260):
 

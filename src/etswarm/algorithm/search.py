@@ -92,6 +92,7 @@ from etswarm.algorithm.params import (
     C_PINCH_REFUSALS,
     C_POCKET,
     C_QUEUE_STRIDE,
+    C_REGROW_PINCH_REFUSALS,
     C_REGROW_RETRIES,
     C_SECOND_RING,
     C_SETTLE_RETRIES,
@@ -112,6 +113,7 @@ from etswarm.algorithm.params import (
     F_FOLLOW_OFFSET,
     F_PAIR_AIM,
     F_PAIR_TOL,
+    F_REGROW_WIDEN_TICKS,
     F_SETTLE_SCALE,
     F_SPACING,
     F_WIDEN_MAX,
@@ -600,12 +602,19 @@ def hovering(i, tick, ri, ci):  # type: ignore[no-untyped-def]
 
 
 @njit(inline="always")
+def widening_ticks(epoch, cf):  # type: ignore[no-untyped-def]
+    """Ticks at the shape over which a searcher of target ``epoch`` widens its windows:
+    ``F_WIDEN_TICKS`` in the first formation, ``F_REGROW_WIDEN_TICKS`` after damage."""
+    return cf[F_WIDEN_TICKS] if epoch == 0 else cf[F_REGROW_WIDEN_TICKS]
+
+
+@njit(inline="always")
 def dive_depth(at_shape, epoch, cf):  # type: ignore[no-untyped-def]
     """How much nearer than d + follow offset (mm) a searcher ``at_shape`` ticks at the
     shape edge-follows: after damage (``epoch`` > 0) up to ``F_DIVE`` over its first
-    ``F_WIDEN_TICKS``; in the first formation up to ``F_DIVE_FIRST`` over the next
-    ``F_WIDEN_TICKS`` after those."""
-    widen_ticks = cf[F_WIDEN_TICKS]
+    widening time (``widening_ticks``); in the first formation up to ``F_DIVE_FIRST``
+    over the next widening time after that."""
+    widen_ticks = widening_ticks(epoch, cf)
     if at_shape <= 0:
         return 0.0
     if epoch > 0:
@@ -715,7 +724,8 @@ def search_rule(  # type: ignore[no-untyped-def]
     at_shape = 0
     if ri[i, R_SHAPE_SINCE] > 0:
         at_shape = tick - ri[i, R_SHAPE_SINCE] + 1
-        widen = 1.0 + (cf[F_WIDEN_MAX] - 1.0) * min(1.0, at_shape / cf[F_WIDEN_TICKS])
+        widen_ticks = widening_ticks(ri[i, R_EPOCH], cf)
+        widen = 1.0 + (cf[F_WIDEN_MAX] - 1.0) * min(1.0, at_shape / widen_ticks)
         # Long at the shape, it may also take a site from the robots round it (``pocket``).
         pocket = ci[C_POCKET] == 1 and at_shape >= POCKET_AFTER_TICKS
     pair_aim = window_centre(cf, at_shape)
@@ -755,7 +765,8 @@ def search_rule(  # type: ignore[no-untyped-def]
             same = same and not reported_but_unheard(i, cx, cy, since, nb)
         if (
             same
-            and ri[i, R_PINCH_REFUSED] < ci[C_PINCH_REFUSALS]
+            and ri[i, R_PINCH_REFUSED]
+            < (ci[C_PINCH_REFUSALS] if ri[i, R_EPOCH] == 0 else ci[C_REGROW_PINCH_REFUSALS])
             and would_pinch(i, cx, cy, since, nb, nb_dist, gene_flag, ci, cf, held_i, ox, oy)
         ):
             same = False  # from here it would narrow a free site: it moves on

@@ -1,0 +1,61 @@
+"""How fast a searcher long at the shape widens its windows: first formation and regrowth."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from etswarm.algorithm.params import (
+    C_PINCH_REFUSALS,
+    C_REGROW_PINCH_REFUSALS,
+    F_REGROW_WIDEN_TICKS,
+    F_WIDEN_TICKS,
+    ETParams,
+)
+from etswarm.algorithm.search import dive_depth, widening_ticks
+from etswarm.errors import EtswarmError
+
+
+def packed(**options: float) -> tuple[np.ndarray, np.ndarray]:
+    ci, cf = ETParams(**options).pack(31, 0, 0)
+    return ci, cf
+
+
+def test_the_first_formation_and_a_regrowth_widen_over_their_own_times() -> None:
+    ci, cf = packed(widen_s=400.0, regrowth_widen_s=1200.0, capture_pinch_refusals=4,
+                    regrowth_pinch_refusals=2)
+    assert cf[F_WIDEN_TICKS] == 400 * 31 and cf[F_REGROW_WIDEN_TICKS] == 1200 * 31
+    assert widening_ticks(0, cf) == 400 * 31
+    assert widening_ticks(3, cf) == 1200 * 31
+    assert (ci[C_PINCH_REFUSALS], ci[C_REGROW_PINCH_REFUSALS]) == (4, 2)
+
+
+def test_the_dive_follows_the_widening_time_of_its_target() -> None:
+    _, cf = packed(widen_s=400.0, regrowth_widen_s=1200.0, dive_mm=3.0, regrowth_dive_mm=3.0)
+    # first formation: no dive during the first widening time, full after two
+    assert dive_depth(400 * 31, 0, cf) == 0.0
+    assert dive_depth(800 * 31, 0, cf) == pytest.approx(3.0)
+    # after damage: the dive grows over the regrowth's (longer) widening time
+    assert dive_depth(600 * 31, 1, cf) == pytest.approx(1.5)
+    assert dive_depth(1200 * 31, 1, cf) == pytest.approx(3.0)
+
+
+@pytest.mark.parametrize(("name", "value"),
+                         [("regrowth_widen_s", 0.0), ("regrowth_pinch_refusals", -1)])
+def test_bad_values_are_rejected(name: str, value: float) -> None:
+    with pytest.raises(EtswarmError, match=name):
+        ETParams(**{name: value})
+
+
+def test_faster_widening_fills_the_last_site_sooner() -> None:
+    from etswarm.algorithm.run import ETRun, RunConfig
+
+    # T seed 30 with windows widening over 20 min: its last searcher went round the
+    # shape for 20 min before it could take the last site (session 20).
+    slow = ETRun(RunConfig(shape="T", seed=30, max_time_s=3 * 3600,
+                           et=ETParams(widen_s=1200.0, capture_pinch_refusals=2))).run()
+    fast = ETRun(RunConfig(shape="T", seed=30, max_time_s=3 * 3600)).run()
+    for summary in (slow, fast):
+        assert summary["formed"] and summary["jaccard"] == 1.0
+        assert summary["duplicate_tags"] == []
+    assert fast["formation_time_s"] <= slow["formation_time_s"] - 600
