@@ -8,13 +8,15 @@ import pytest
 from etswarm.algorithm.params import ETParams
 from etswarm.algorithm.run import ETRun, RunConfig
 
+from .traced import SESSION_19_WIDENING
+
 #: The settings these runs were traced with (session 12): with the wider consistency
 #: tolerance of session 13 the same seeds form without diving too.
 # the settings these runs were traced with (before the pinched-mouth default, the lookahead,
-# held-site gossip, site offsets and lost searchers' homing)
+# held-site gossip, site offsets, lost searchers' homing and session 20's faster widening)
 TRACED = {
     "consistency_widen_max": 1.0, "fill_lookahead": "off", "held_gossip_every": 0,
-    "site_offsets": "off", "lost_homing": "off",
+    "site_offsets": "off", "lost_homing": "off", **SESSION_19_WIDENING,
 }
 
 

@@ -28,6 +28,8 @@ from etswarm.algorithm.params import ETParams
 from etswarm.algorithm.run import ETRun, RunConfig
 from etswarm.algorithm.states import PLACED_STATES
 
+from .traced import SESSION_19_WIDENING
+
 TPS = 31
 
 
@@ -114,7 +116,8 @@ def regrown(placement: str) -> tuple[ETRun, np.ndarray, dict[int, int], dict[int
     run = ETRun(
         RunConfig(
             shape="starfish", seed=0, max_time_s=6 * 3600, damage=("split y=mid",),
-            et=ETParams(placement=placement, site_offsets="off", lost_homing="off"),
+            et=ETParams(placement=placement, site_offsets="off", lost_homing="off",
+                        **SESSION_19_WIDENING),
         )
     )
     while not any(e["kind"] == "damage" for e in run.events):

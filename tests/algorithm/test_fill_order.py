@@ -9,6 +9,8 @@ from etswarm.algorithm.fill_order import finishes, locatable, strands_a_site
 from etswarm.algorithm.params import ETParams
 from etswarm.algorithm.run import ETRun, RunConfig
 
+from .traced import SESSION_19_WIDENING
+
 #: Gene grid and memory window: tags -3..7 in both axes.
 ORIGIN = -3
 SIZE = 11
@@ -73,7 +75,7 @@ def test_heart_seed_9_forms_only_with_the_lookahead() -> None:
             # as traced
             et=ETParams(
                 fill_lookahead=lookahead, held_gossip_every=0, site_offsets="off",
-                lost_homing="off",
+                lost_homing="off", **SESSION_19_WIDENING,
             ),
         )
         run = ETRun(config)

@@ -37,6 +37,8 @@ from etswarm.algorithm.run import ETRun, RunConfig
 from etswarm.algorithm.states import State
 from etswarm.sim import FORWARD, LEFT, RIGHT, SimParams, Simulator, World
 
+from .traced import SESSION_19_WIDENING
+
 
 class Silent:
     """Slow-path controller that does nothing (motors as set by the test)."""
@@ -188,7 +190,7 @@ def test_home_is_where_it_last_heard_the_group() -> None:
 def test_triangle_seed_31_waits_for_a_lost_searcher_without_homing(homing: str) -> None:
     """The traced run: with the fixed spiral, its last searchers never came back."""
     run = ETRun(RunConfig(shape="triangle", seed=31, max_time_s=2 * 3600,
-                          et=ETParams(lost_homing=homing)))
+                          et=ETParams(lost_homing=homing, **SESSION_19_WIDENING)))
     summary = run.run()
     assert summary["formed"] == (homing == "on")
     assert not summary["duplicate_tags"]

@@ -39,6 +39,8 @@ from etswarm.algorithm.params import ETParams
 from etswarm.algorithm.run import ETRun, RunConfig
 from etswarm.shapes.lattice import tags_to_xy
 
+from .traced import SESSION_19_WIDENING
+
 TPS = 31
 D = 40.0
 
@@ -207,7 +209,8 @@ def test_a_regrown_h_fills_its_crossbar_between_stretched_legs(offsets):
     re-forms, and so do the two legs. (Traced before the pinch rule, which is off here:
     with it the legs are split 10 and 12 robots.)"""
     run = ETRun(RunConfig(shape="H", seed=2, max_time_s=4 * 3600, damage=("split y=mid",),
-                          et=ETParams(site_offsets=offsets, capture_pinch_mm=0.0)))
+                          et=ETParams(site_offsets=offsets, capture_pinch_mm=0.0,
+                                       **SESSION_19_WIDENING)))
     summary = run.run()
     assert summary["formed"]
     big = [c for c in summary["components"] if c["robots"] >= 6]

@@ -16,6 +16,8 @@ from etswarm.algorithm.params import ETParams
 from etswarm.algorithm.pinch import NOTCH_HELD, free_neighbours, toward_free, would_pinch
 from etswarm.shapes.lattice import tags_to_xy
 
+from .traced import SESSION_19_WIDENING
+
 D = 40.0
 HELD_DIRS = (1, 2, 3, 4, 5)
 GENE = np.ones((7, 7), dtype=np.int64)  # tags -3 .. 3 (gene origin at (-3, -3))
@@ -132,11 +134,12 @@ def test_refusing_pinching_captures_lets_the_last_sites_fill(shape: str, seed: i
     # Without the rule the run stalls with a robot 36 mm or nearer a free site's centre
     # (a body is 33 mm across): no searcher fits in.
     off = ETRun(RunConfig(shape=shape, seed=seed, max_time_s=4 * 3600,
-                          et=ETParams(capture_pinch_mm=0.0)))
+                          et=ETParams(capture_pinch_mm=0.0, **SESSION_19_WIDENING)))
     assert not off.run()["formed"]
     assert nearest_to_a_free_site_mm(off) < 36.0
     # With it the same swarm forms the shape.
-    summary = ETRun(RunConfig(shape=shape, seed=seed, max_time_s=4 * 3600)).run()
+    summary = ETRun(RunConfig(shape=shape, seed=seed, max_time_s=4 * 3600,
+                              et=ETParams(**SESSION_19_WIDENING))).run()
     assert summary["formed"] and summary["jaccard"] == 1.0
     assert summary["duplicate_tags"] == []
 

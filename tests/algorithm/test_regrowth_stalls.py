@@ -10,12 +10,16 @@ from __future__ import annotations
 from etswarm.algorithm.params import ETParams
 from etswarm.algorithm.run import ETRun, RunConfig
 
+from .traced import SESSION_19_WIDENING
+
 #: The consistency settings of session 12, which the first formations were traced with.
 # the settings these runs were traced with (before the pinched-mouth default, the lookahead,
-# held-site gossip, the extent placement, site offsets and lost searchers' homing)
+# held-site gossip, the extent placement, site offsets, lost searchers' homing and session
+# 20's faster widening)
 TRACED = {
     "consistency_widen_max": 1.0, "fill_lookahead": "off", "held_gossip_every": 0,
     "placement": "local", "site_offsets": "off", "lost_homing": "off",
+    **SESSION_19_WIDENING,
 }
 
 
