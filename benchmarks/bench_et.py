@@ -74,7 +74,7 @@ def disc_bitmap(cells: int, path: Path) -> Path:
 SPEED_SHAPES = ("T", "bigdisc", "disc1000")
 #: The written discs, by name: the number of cells asked for. Until session 20 "disc1000"
 #: was a disc of 1311 cells (its radius was worked out for square pixels); "disc1300" keeps
-#: about that size (1307 cells) for comparison with the earlier figures.
+#: about that size (1303 cells) for comparison with the earlier figures.
 DISCS = {"disc1000": 1000, "disc1300": 1300}
 
 
