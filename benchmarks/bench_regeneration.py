@@ -2,6 +2,8 @@
 
     .venv/bin/python benchmarks/bench_regeneration.py [--seeds 10] [--max-time 14400]
         [--census tree|walk|both] [--jobs 2] [--case "triangle:split x=0" ...]
+    .venv/bin/python benchmarks/bench_regeneration.py --suite issue5 --seeds 20 --jobs 2 \
+        --census tree --out runs.jsonl    # the 18 cases the closing notes report
 
 A case is ``SHAPE:DAMAGE`` or ``SHAPE/N:DAMAGE`` (N robots forming scale(SHAPE, N), --fit).
 For each case and census method, one Markdown table row: runs whose first formation
@@ -37,6 +39,21 @@ CASES = (
     ("hexagon", "split x=0"),
     ("T", "split x=0"),
 )
+
+#: The issue's bar (issue 5): seven shapes cut through the middle both ways, and random
+#: removal and killing on two of them; ``--suite issue5``.
+ISSUE5_CASES = (
+    *(
+        (shape, f"split {axis}=mid")
+        for shape in ("T", "dumbbell", "starfish", "L", "arrow", "plus", "H")
+        for axis in ("x", "y")
+    ),
+    ("T", "kill random=0.1"),
+    ("T", "remove random=0.2"),
+    ("L", "kill random=0.1"),
+    ("L", "remove random=0.2"),
+)
+SUITES = {"default": CASES, "issue5": ISSUE5_CASES}
 
 
 def one_run(args: tuple[str, str, str, int, float, dict[str, str]]) -> dict[str, Any]:
@@ -148,13 +165,17 @@ def main() -> None:
         "--case", type=parse_case, action="append", default=None, metavar="SHAPE:DAMAGE"
     )
     parser.add_argument(
+        "--suite", choices=sorted(SUITES), default="default",
+        help="The cases to run when no --case is given.",
+    )
+    parser.add_argument(
         "--et", type=parse_option, action="append", default=[], metavar="NAME=VALUE",
         help="An ETParams option for every run, e.g. release_order=id (repeatable).",
     )
     args = parser.parse_args()
     et_options = dict(args.et)
     methods = ("tree", "walk") if args.census == "both" else (args.census,)
-    cases = args.case or list(CASES)
+    cases = args.case or list(SUITES[args.suite])
     print(f"load average {os.getloadavg()}")
     print(HEADER)
     seeds = range(args.first_seed, args.first_seed + args.seeds)
