@@ -54,7 +54,8 @@ C_LOST_HOMING = 37  # 1: a lost searcher circles where it last heard the group (
 C_REPORT_PATIENCE = 38  # 1: a Stable robot waits longer for neighbours it only knew by report
 C_PINCH_REFUSALS = 39  # a searcher refuses at most this many sites that would pinch a free one
 C_REGROW_PINCH_REFUSALS = 40  # the same while it searches for a regenerated target
-N_CI = 41
+C_REGROW_OFFSETS = 41  # REGROW_OFFSETS_*: what a robot kept on its site does with its offset
+N_CI = 42
 
 F_SPACING = 0  # lattice spacing d
 F_PAIR_TOL = 1  # two references within this of d trigger a site candidate
@@ -81,7 +82,8 @@ F_ODO_LEG = 20  # angle of the pivot legs from the heading, rad
 F_ODO_RADIUS = 21  # body radius (legs on the rim), mm
 F_CAPTURE_PINCH = 22  # a searcher takes no site from this far (mm) into a free neighbour site
 F_REGROW_WIDEN_TICKS = 23  # F_WIDEN_TICKS while a searcher works for a regenerated target
-N_CF = 24
+F_TWO_WIDEN_TICKS = 24  # after this long at the shape a two-neighbour site gets the wide window
+N_CF = 25
 
 #: The DESIGN section 2 robot: 7 mm/s, 13 deg/s, legs at 125.5 deg, radius 16.5 mm.
 NOMINAL_MOTION = (7.0, 13.0, 125.5, 16.5)
@@ -91,6 +93,9 @@ CENSUS_METHODS = ("tree", "walk")
 #: How searchers go round the group (``ETParams.orbit``): always clockwise (the paper), or
 #: back and forth round the shape, turning back where it meets the repository.
 ORBIT_MODES = ("bounce", "clockwise")
+#: What a robot that keeps its site through a regeneration does with its offset
+#: (``ETParams.regrowth_offsets``), in the order of their codes in ``ci``.
+REGROWTH_OFFSETS = ("keep", "reset", "zero")
 #: Where a Leader places the scaled shape (``ETParams.placement``).
 PLACEMENTS = ("extent", "local")
 
@@ -101,7 +106,7 @@ NON_NEGATIVE: frozenset[str] = frozenset(
         "pair_aim_relax_s", "settle_retries", "regrowth_settle_retries", "release_hold_s",
         "regrowth_hover_s", "regrowth_crowded_s", "regrowth_dive_mm",
         "dive_mm", "held_gossip_every", "queue_rank_wait_s", "capture_pinch_mm",
-        "capture_pinch_refusals", "regrowth_pinch_refusals",
+        "capture_pinch_refusals", "regrowth_pinch_refusals", "two_neighbour_widen_s",
     }
 )
 #: Parameters that may take any sign.
@@ -328,6 +333,14 @@ class ETParams:
     capture_pinch_refusals: int = 4
     #: ... and this many while it searches for a regenerated target (after damage).
     regrowth_pinch_refusals: int = 2
+    #: What a robot that keeps its site through a regeneration does with its offset:
+    #: "keep" it; "reset" it to 0 and refine it again from its neighbours' readings
+    #: until it is Stable; "zero": reset it to 0 and stop refining.
+    regrowth_offsets: str = "keep"
+    #: A searcher this long at the shape (s) also gets its widened window at a site where
+    #: it hears only two placed neighbours (a tip or an edge), not only at one with three
+    #: or more; 0: never.
+    two_neighbour_widen_s: float = 0.0
 
     def __post_init__(self) -> None:
         for f in fields(self):
@@ -342,6 +355,11 @@ class ETParams:
             ):
                 if value not in ("on", "off"):
                     raise EtswarmError(f"{f.name} must be 'on' or 'off', got {value!r}")
+            elif f.name == "regrowth_offsets":
+                if value not in REGROWTH_OFFSETS:
+                    raise EtswarmError(
+                        f"regrowth_offsets must be one of {REGROWTH_OFFSETS}, got {value!r}"
+                    )
             elif f.name == "placement":
                 if value not in PLACEMENTS:
                     raise EtswarmError(f"placement must be one of {PLACEMENTS}, got {value!r}")
@@ -436,6 +454,7 @@ class ETParams:
         cf[F_WIDEN_MAX] = self.widen_max
         cf[F_WIDEN_TICKS] = self.widen_s * ticks_per_s
         cf[F_REGROW_WIDEN_TICKS] = self.regrowth_widen_s * ticks_per_s
+        cf[F_TWO_WIDEN_TICKS] = self.two_neighbour_widen_s * ticks_per_s
         cf[F_AIM_RELAX] = self.pair_aim_relax_s * ticks_per_s
         cf[F_CONSIST_TOL] = self.consistency_tol_mm
         cf[F_CONSIST_WIDEN] = self.consistency_widen_max
@@ -452,6 +471,7 @@ class ETParams:
         cf[F_CAPTURE_PINCH] = self.capture_pinch_mm
         ci[C_PINCH_REFUSALS] = self.capture_pinch_refusals
         ci[C_REGROW_PINCH_REFUSALS] = self.regrowth_pinch_refusals
+        ci[C_REGROW_OFFSETS] = REGROWTH_OFFSETS.index(self.regrowth_offsets)
         speed_mm_s, turn_deg_s, leg_deg, radius_mm = nominal_motion
         cf[F_ODO_STEP] = speed_mm_s / ticks_per_s
         cf[F_ODO_TURN] = math.radians(turn_deg_s) / ticks_per_s

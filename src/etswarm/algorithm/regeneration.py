@@ -72,6 +72,10 @@ from etswarm.algorithm.memory import (
     R_MASK,
     R_NEWSLOT,
     R_NN,
+    R_OFF_REFINE,
+    R_OFF_TICK,
+    R_OFF_X,
+    R_OFF_Y,
     R_PARENT,
     R_PEND_EPOCH,
     R_PEND_N,
@@ -103,11 +107,17 @@ from etswarm.algorithm.memory import (
 )
 from etswarm.algorithm.params import (
     C_CENSUS_WALK,
+    C_OFFSETS,
+    C_REGROW_OFFSETS,
     C_TICKS_NB_FRESH,
     C_TICKS_REGEN_QUIET,
+    REGROWTH_OFFSETS,
 )
 from etswarm.algorithm.release import HOPS_NONE
 
+#: Codes of ``ETParams.regrowth_offsets`` in ``ci[C_REGROW_OFFSETS]``.
+REGROW_OFFSETS_KEEP = REGROWTH_OFFSETS.index("keep")
+REGROW_OFFSETS_RESET = REGROWTH_OFFSETS.index("reset")
 #: Ticks a robot keeps relaying a newly adopted target (alternating with its status).
 TARGET_RELAY_TICKS = 31 * 40
 #: Leader field of a robot that has heard of no candidate yet (census walk).
@@ -262,6 +272,23 @@ def find_slot(slot_info, n, tx, ty):  # type: ignore[no-untyped-def]
 
 
 @njit
+def restart_offset(i, tick, seed, ri, ci):  # type: ignore[no-untyped-def]
+    """Robot i keeps its site through a regeneration: with ``regrowth_offsets`` "reset"
+    or "zero" its offset, an estimate in the frame of the target before (whose seeds may
+    stand far from this remnant, across the drift of the whole lattice), starts again
+    from 0; with "reset" a robot other than the new Active seed (``seed``) then refines
+    it from its neighbours' readings until it is Stable (``offsets.refine_offset``)."""
+    mode = ci[C_REGROW_OFFSETS]
+    if mode == REGROW_OFFSETS_KEEP:
+        return
+    ri[i, R_OFF_X] = 0
+    ri[i, R_OFF_Y] = 0
+    refine = mode == REGROW_OFFSETS_RESET and not seed and ci[C_OFFSETS] == 1
+    ri[i, R_OFF_REFINE] = 1 if refine else 0
+    ri[i, R_OFF_TICK] = tick
+
+
+@njit
 def adopt_target(i, tick, ri, nb, slot, epoch, leader, gene_flag, gene_nn, slot_info, ci):  # type: ignore[no-untyped-def]
     """Robot i takes target ``slot`` of ``epoch``: stays on its site if the new shape has
     it (the Leader as the Active seed), else goes back to Queued. Its neighbour table is
@@ -288,6 +315,7 @@ def adopt_target(i, tick, ri, nb, slot, epoch, leader, gene_flag, gene_nn, slot_
     y = ri[i, R_TAG_Y]
     if ri[i, R_HAS_TAG] == 1 and gene_at(gene_flag[slot], ci, x, y) == 1:
         ri[i, R_NN] = gene_at(gene_nn[slot], ci, x, y)
+        restart_offset(i, tick, i == leader, ri, ci)
         if i == leader:
             set_state(i, ri, ACTIVE, tick)
             ri[i, R_TS] = 1
