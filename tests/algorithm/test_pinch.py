@@ -13,7 +13,13 @@ import pytest
 from etswarm.algorithm.kernel_util import DIR_X, DIR_Y, STABLE
 from etswarm.algorithm.memory import NB_ID, NB_LAST, NB_STATE, NB_TX, NB_TY, allocate
 from etswarm.algorithm.params import ETParams
-from etswarm.algorithm.pinch import NOTCH_HELD, free_neighbours, toward_free, would_pinch
+from etswarm.algorithm.pinch import (
+    NOTCH_HELD,
+    free_neighbours,
+    narrow_mouth,
+    toward_free,
+    would_pinch,
+)
 from etswarm.shapes.lattice import tags_to_xy
 
 from .traced import SESSION_19_WIDENING
@@ -102,6 +108,46 @@ def test_a_free_site_counts_once_enough_of_its_neighbours_are_held() -> None:
     assert counted[0] is False and counted[-1] is True
 
 
+def with_robot_across(across_mm: float, tag_step: int = 2) -> tuple[np.ndarray, np.ndarray]:
+    """Robot 0 on the centre of (0, 0), also reading a placed robot ``tag_step`` steps
+    away in direction 0 (through the free site) at ``across_mm``: ``(nb, nb_dist)``."""
+    nb, nb_dist = confirming(0.0)
+    slot = len(HELD_DIRS)
+    nb[0, slot, NB_ID] = 9
+    nb[0, slot, NB_STATE] = STABLE
+    nb[0, slot, NB_TX] = tag_step * DIR_X[0]
+    nb[0, slot, NB_TY] = tag_step * DIR_Y[0]
+    nb[0, slot, NB_LAST] = 10
+    nb_dist[0, slot] = across_mm
+    return nb, nb_dist
+
+
+@pytest.mark.parametrize(("across_mm", "limit", "expected"), [
+    (62.0, 68.0, True),   # two bodies 62 mm apart: no third fits between them
+    (79.0, 68.0, False),  # about 2 d: room for one
+    (62.0, 0.0, False),   # the rule off
+])
+def test_a_capture_that_narrows_a_free_sites_mouth_is_refused(
+    across_mm: float, limit: float, expected: bool
+) -> None:
+    ci, cf = ETParams(capture_mouth_mm=limit).pack(31, -3, -3)
+    nb, nb_dist = with_robot_across(across_mm)
+    # It stands on its site's centre: the offset rule alone would let it take the site.
+    assert narrow_mouth(0, 0, 0, 5, 1 << 0, nb, nb_dist, cf) is expected
+    assert bool(would_pinch(0, 0, 0, 5, nb, nb_dist, GENE, ci, cf, EMPTY_MEMORY, -4, -4)) is (
+        expected
+    )
+
+
+def test_only_the_robot_across_a_free_site_narrows_its_mouth() -> None:
+    _, cf = ETParams(capture_mouth_mm=68.0).pack(31, -3, -3)
+    nb, nb_dist = with_robot_across(62.0, tag_step=3)  # one step farther: not across it
+    assert not narrow_mouth(0, 0, 0, 5, 1 << 0, nb, nb_dist, cf)
+    nb, nb_dist = with_robot_across(62.0)
+    assert not narrow_mouth(0, 0, 0, 5, 1 << 3, nb, nb_dist, cf)  # that site is not free
+    assert not narrow_mouth(0, 0, 0, 11, 1 << 0, nb, nb_dist, cf)  # read before `since`
+
+
 def nearest_to_a_free_site_mm(run) -> float:  # type: ignore[no-untyped-def]
     """Over the target's free sites at the end of ``run``: the least distance (mm) from a
     free site's centre (the rigid fit of the placed robots' tags) to a robot holding a
@@ -157,3 +203,44 @@ def test_the_viewer_shows_a_searchers_refusals() -> None:
     live.run.controller.ri[searcher, R_PINCH_REFUSED] = 2
     assert live.robot_info(searcher)["pinch_refusals"] == 2
     assert live.robot_info(int(np.flatnonzero(states == 0)[0]))["pinch_refusals"] == "-"
+
+
+def narrowest_mouth_mm(run) -> float:  # type: ignore[no-untyped-def]
+    """Over every remnant's free target sites at the end of ``run``: the least distance
+    (mm) between the holders of two opposite neighbour sites of a free site."""
+    from etswarm.shapes.lattice import NEIGHBOUR_OFFSETS
+
+    holds, _ = run._masks()
+    narrowest = np.inf
+    for group in run._groups():
+        held = {tuple(int(v) for v in run.controller.tags[r]): r for r in group[holds[group]]}
+        target = run.controller.slot_cells[run._slot_of(group)]
+        for cell in (tuple(int(v) for v in c) for c in target):
+            if cell in held:
+                continue
+            for dx, dy in NEIGHBOUR_OFFSETS:
+                a = held.get((cell[0] + dx, cell[1] + dy))
+                b = held.get((cell[0] - dx, cell[1] - dy))
+                if a is not None and b is not None:
+                    gap = float(np.hypot(*(run.world.pos[a] - run.world.pos[b])))
+                    narrowest = min(narrowest, gap)
+    return narrowest
+
+
+def test_refusing_narrow_mouths_lets_a_regrowth_fill_its_last_site() -> None:
+    from etswarm.algorithm.run import ETRun, RunConfig
+
+    # Traced (session 21): without the rule the upper remnant's last free site is left
+    # between two placed robots too close for a body to pass, and its searcher goes round
+    # for hours; with it every remnant re-forms.
+    config = {"shape": "dumbbell", "seed": 5, "damage": ("split y=mid",),
+              "max_time_s": 4 * 3600}
+    off = ETRun(RunConfig(**config, et=ETParams(capture_mouth_mm=0.0)))
+    summary = off.run()
+    assert summary["formed"]  # the first formation
+    assert not all(c["formed"] for c in summary["components"])
+    assert narrowest_mouth_mm(off) < 68.0
+    on = ETRun(RunConfig(**config)).run()
+    assert len(on["components"]) >= 2
+    assert all(c["formed"] and c["jaccard"] == 1.0 for c in on["components"])
+    assert on["duplicate_tags"] == []

@@ -83,7 +83,8 @@ F_ODO_RADIUS = 21  # body radius (legs on the rim), mm
 F_CAPTURE_PINCH = 22  # a searcher takes no site from this far (mm) into a free neighbour site
 F_REGROW_WIDEN_TICKS = 23  # F_WIDEN_TICKS while a searcher works for a regenerated target
 F_TWO_WIDEN_TICKS = 24  # after this long at the shape a two-neighbour site gets the wide window
-N_CF = 25
+F_CAPTURE_MOUTH = 25  # no capture reading the robot across a free site nearer than this
+N_CF = 26
 
 #: The DESIGN section 2 robot: 7 mm/s, 13 deg/s, legs at 125.5 deg, radius 16.5 mm.
 NOMINAL_MOTION = (7.0, 13.0, 125.5, 16.5)
@@ -107,6 +108,7 @@ NON_NEGATIVE: frozenset[str] = frozenset(
         "regrowth_hover_s", "regrowth_crowded_s", "regrowth_dive_mm",
         "dive_mm", "held_gossip_every", "queue_rank_wait_s", "capture_pinch_mm",
         "capture_pinch_refusals", "regrowth_pinch_refusals", "two_neighbour_widen_s",
+        "capture_mouth_mm",
     }
 )
 #: Parameters that may take any sign.
@@ -327,6 +329,10 @@ class ETParams:
     #: neighbour held (``pinch``); 0: it takes any site its window confirms. First
     #: formations, 13 shapes, seeds 30-89: 753 of 780 formed against 739 with 0.
     capture_pinch_mm: float = 10.0
+    #: ... nor when it reads the placed robot across such a free site (two steps away
+    #: through it) nearer than this (mm): the two would leave the free site a mouth too
+    #: narrow for a body (ideal 2 d = 80 mm; two 33 mm bodies need 66); 0: no such test.
+    capture_mouth_mm: float = 68.0
     #: ... and refuses at most this many sites so between leaving the repository and
     #: taking one: where the lattice is stretched every capture may stand far off. 4
     #: since session 20, when windows widen three times faster (``widen_s``).
@@ -469,6 +475,7 @@ class ETParams:
         cf[F_WALK_COLLECT] = self.census_collect_mm
         cf[F_OFFSET_TRUST] = self.offset_trust
         cf[F_CAPTURE_PINCH] = self.capture_pinch_mm
+        cf[F_CAPTURE_MOUTH] = self.capture_mouth_mm
         ci[C_PINCH_REFUSALS] = self.capture_pinch_refusals
         ci[C_REGROW_PINCH_REFUSALS] = self.regrowth_pinch_refusals
         ci[C_REGROW_OFFSETS] = REGROWTH_OFFSETS.index(self.regrowth_offsets)

@@ -25,6 +25,14 @@ It moves on as after any failed confirmation. A searcher refuses at most
 widen three times faster) sites between leaving the repository and taking one: where the
 lattice is stretched, every capture may stand far off.
 
+With ``ETParams.capture_mouth_mm`` = M > 0 (default 68, since session 21) it also refuses
+the site when it reads, since it stopped, the placed robot across such a free site (two
+steps from its own site through the free one) nearer than M mm (``narrow_mouth``): two
+33 mm bodies need 66 mm between their centres for a third to come in between, where the
+lattice puts 2 d = 80. Regrowths used to stall this way with no capture more than a few
+mm off: the last free site had four held neighbours in a row, and the two at the ends
+stood 59-70 mm apart. Both tests share the count of refusals.
+
 Measured over 13 shapes, seeds 30-49 (4 h limit; the defaults before formed 241 of 260):
 
 - every free neighbour site counting, no limit on refusals: 232 (disc 19, heart 20,
@@ -39,9 +47,10 @@ from __future__ import annotations
 
 from numba import njit
 
-from etswarm.algorithm.kernel_util import DIR_X, DIR_Y, gene_at
+from etswarm.algorithm.kernel_util import DIR_X, DIR_Y, gene_at, is_placed
+from etswarm.algorithm.memory import NB_ID, NB_LAST, NB_STATE, NB_TX, NB_TY
 from etswarm.algorithm.offsets import locate, site_x, site_y
-from etswarm.algorithm.params import C_OFFSETS, F_CAPTURE_PINCH, F_SPACING
+from etswarm.algorithm.params import C_OFFSETS, F_CAPTURE_MOUTH, F_CAPTURE_PINCH, F_SPACING
 from etswarm.algorithm.site_memory import is_held, site_taken
 
 #: A free neighbour site counts when this many of its neighbour sites are held once the
@@ -96,6 +105,28 @@ def free_neighbours(i, cx, cy, nb, gene_flag, ci, held_i, wx, wy):  # type: igno
 
 
 @njit
+def narrow_mouth(i, cx, cy, since, free_mask, nb, nb_dist, cf):  # type: ignore[no-untyped-def]
+    """Robot i, standing to take site (cx, cy), read since ``since`` the placed robot
+    across one of the free sites of ``free_mask`` (two steps from (cx, cy) through it)
+    nearer than ``capture_mouth_mm``: the free site would be left between two bodies too
+    close for a third to come in."""
+    limit = cf[F_CAPTURE_MOUTH]
+    if limit <= 0.0:
+        return False
+    for j in range(nb.shape[1]):
+        if nb[i, j, NB_ID] < 0 or not is_placed(nb[i, j, NB_STATE]) or nb[i, j, NB_LAST] < since:
+            continue
+        if nb_dist[i, j] >= limit:
+            continue
+        for k in range(6):
+            if (free_mask >> k) & 1 and (
+                nb[i, j, NB_TX] == cx + 2 * DIR_X[k] and nb[i, j, NB_TY] == cy + 2 * DIR_Y[k]
+            ):
+                return True
+    return False
+
+
+@njit
 def would_pinch(i, cx, cy, since, nb, nb_dist, gene_flag, ci, cf, held_i, wx, wy):  # type: ignore[no-untyped-def]
     """Robot i, confirming site (cx, cy) on readings since ``since``, stands
     ``capture_pinch_mm`` or more into a free neighbour site (see module). False with the
@@ -106,6 +137,8 @@ def would_pinch(i, cx, cy, since, nb, nb_dist, gene_flag, ci, cf, held_i, wx, wy
     free = free_neighbours(i, cx, cy, nb, gene_flag, ci, held_i, wx, wy)
     if free == 0:
         return False
+    if narrow_mouth(i, cx, cy, since, free, nb, nb_dist, cf):
+        return True
     d = cf[F_SPACING]
     x0 = site_x(cx, cy, d)
     y0 = site_y(cy, d)
