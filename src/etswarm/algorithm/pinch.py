@@ -47,7 +47,7 @@ from __future__ import annotations
 
 from numba import njit
 
-from etswarm.algorithm.kernel_util import DIR_X, DIR_Y, gene_at, is_placed
+from etswarm.algorithm.kernel_util import DIR_X, DIR_Y, direction_index, gene_at, is_placed
 from etswarm.algorithm.memory import NB_ID, NB_LAST, NB_STATE, NB_TX, NB_TY
 from etswarm.algorithm.offsets import locate, site_x, site_y
 from etswarm.algorithm.params import C_OFFSETS, F_CAPTURE_MOUTH, F_CAPTURE_PINCH, F_SPACING
@@ -116,13 +116,13 @@ def narrow_mouth(i, cx, cy, since, free_mask, nb, nb_dist, cf):  # type: ignore[
     for j in range(nb.shape[1]):
         if nb[i, j, NB_ID] < 0 or not is_placed(nb[i, j, NB_STATE]) or nb[i, j, NB_LAST] < since:
             continue
-        if nb_dist[i, j] >= limit:
+        dx = nb[i, j, NB_TX] - cx
+        dy = nb[i, j, NB_TY] - cy
+        if nb_dist[i, j] >= limit or dx % 2 != 0 or dy % 2 != 0:
             continue
-        for k in range(6):
-            if (free_mask >> k) & 1 and (
-                nb[i, j, NB_TX] == cx + 2 * DIR_X[k] and nb[i, j, NB_TY] == cy + 2 * DIR_Y[k]
-            ):
-                return True
+        k = direction_index(dx // 2, dy // 2)  # two steps in direction k
+        if k >= 0 and (free_mask >> k) & 1:
+            return True
     return False
 
 
