@@ -3,8 +3,11 @@
 from __future__ import annotations
 
 import numpy as np
+import pytest
 
+from etswarm.algorithm.params import ETParams
 from etswarm.algorithm.placement import RemnantView, choose_translation, triangles_at
+from etswarm.errors import EtswarmError
 
 #: A bar of 3 x 2 cells (tags).
 BAR = np.array([[0, 0], [1, 0], [2, 0], [0, 1], [1, 1], [2, 1]])
@@ -52,3 +55,48 @@ def test_a_leader_without_two_adjacent_neighbours_seeds_from_a_remembered_triang
     # with no triangle anywhere it still places the shape round the Leader
     alone = choose_translation(BAR, leader, view(known, set()))
     assert leader in sites_after(alone)
+
+
+def test_any_seeds_keep_the_most_of_the_remnant_where_the_leader_is_hemmed_in() -> None:
+    """The Leader can seed with two neighbours, but a shape kept on it covers one site of
+    the remnant; a bar of six held sites stands elsewhere. "leader" keeps the shape on
+    the Leader (the paper), "any" lays it over the bar."""
+    leader = (0, 0)
+    known = {(1, 0), (1, 1)}
+    bar = sites_after((10, 0))
+    paper = sites_after(choose_translation(BAR, leader, view(known, bar)))
+    assert {leader, (1, 0), (1, 1)} <= paper
+    assert not paper & bar
+    anywhere = sites_after(choose_translation(BAR, leader, view(known, bar), seeds="any"))
+    assert anywhere == bar
+
+
+def test_any_seeds_keep_the_leader_when_it_covers_as_much() -> None:
+    """With as much of the remnant either way, the Leader's own placement wins."""
+    leader = (0, 0)
+    known = {(1, 0), (1, 1), (0, 1)}
+    shift = choose_translation(BAR, leader, view(known, set()), seeds="any")
+    assert leader in sites_after(shift)
+    assert shift == choose_translation(BAR, leader, view(known, set()))
+
+
+def test_placement_seeds_takes_only_its_two_values() -> None:
+    assert ETParams(placement_seeds="any").placement_seeds == "any"
+    assert ETParams(placement_seeds="silent").placement_seeds == "silent"
+    with pytest.raises(EtswarmError, match="placement_seeds"):
+        ETParams(placement_seeds="everywhere")
+
+
+def test_silent_seeds_move_off_the_leader_only_after_deaths() -> None:
+    """"silent" places as "leader" when no site inside the remnant fell silent, and as
+    "any" when one did."""
+    leader = (0, 0)
+    known = {(1, 0), (1, 1)}
+    bar = sites_after((10, 0))
+    calm = view(known, bar)
+    assert choose_translation(BAR, leader, calm, seeds="silent") == choose_translation(
+        BAR, leader, calm
+    )
+    dead = {(20, 20)}
+    hemmed = RemnantView(known, bar, dead, dead, None, always_fits)
+    assert sites_after(choose_translation(BAR, leader, hemmed, seeds="silent")) == bar

@@ -99,6 +99,8 @@ ORBIT_MODES = ("bounce", "clockwise")
 REGROWTH_OFFSETS = ("keep", "reset", "zero")
 #: Where a Leader places the scaled shape (``ETParams.placement``).
 PLACEMENTS = ("extent", "local")
+#: Which seed triangle a Leader's placement may use (``ETParams.placement_seeds``).
+PLACEMENT_SEEDS = ("leader", "any", "silent")
 
 
 #: Parameters that may be zero (all others must be positive).
@@ -303,6 +305,14 @@ class ETParams:
     #: repository). "extent" needs ``held_gossip_every`` > 0; without gossip the Leader
     #: places as with "local".
     placement: str = "extent"
+    #: Which seeds the scaled shape grows from: "leader" (the paper): the Leader and two
+    #: of its neighbours whenever some placement holds them, any other seed triangle of
+    #: held sites only when none does; "any": the placement that keeps the most of the
+    #: remnant wins whichever triangle seeds it (the Leader's own breaks ties); "silent":
+    #: "any" when the Leader knows of sites inside its remnant that fell silent (robots
+    #: died there), else "leader". After ``kill`` the dead robots hem the Leader in, and
+    #: the shape kept on it can miss most of the remnant (``placement.choose_translation``).
+    placement_seeds: str = "leader"
     #: "on": a robot that takes a site estimates how far off its centre it stands and
     #: sends that offset; searchers aim at sites' true centres from where the placed
     #: robots really stand (``offsets``). "off": every placed robot is taken to stand on
@@ -369,6 +379,11 @@ class ETParams:
             elif f.name == "placement":
                 if value not in PLACEMENTS:
                     raise EtswarmError(f"placement must be one of {PLACEMENTS}, got {value!r}")
+            elif f.name == "placement_seeds":
+                if value not in PLACEMENT_SEEDS:
+                    raise EtswarmError(
+                        f"placement_seeds must be one of {PLACEMENT_SEEDS}, got {value!r}"
+                    )
             elif f.name == "release_order":
                 if value not in ("far", "id"):
                     raise EtswarmError(f"release_order must be 'far' or 'id', got {value!r}")

@@ -58,28 +58,41 @@ class RemnantView:
     fits: Callable[[np.ndarray], bool]
 
 
-def choose_translation(cells: np.ndarray, leader: Tag, view: RemnantView) -> tuple[int, int] | None:
+def choose_translation(
+    cells: np.ndarray, leader: Tag, view: RemnantView, seeds: str = "leader"
+) -> tuple[int, int] | None:
     """The translation (tx, ty) for the scaled shape ``cells`` ((P, 2) tags), or None when
     no translation fits the gene grids.
 
-    First the translations that put a cell on the Leader's site, ranked by: seeded (the
-    Leader and two adjacent known neighbours inside), fewest enclosed silent sites, most
-    remembered held sites of the remnant inside, most cells inside the extent, most known
-    sites, fewest silent sites, then smallest shift. If none of them is seeded, the
-    translations that put a cell on any site known or remembered held, seeded by any
-    triangle of such sites, ranked the same way.
+    ``seeds = "leader"`` (the paper's seeds): first the translations that put a cell on
+    the Leader's site, ranked by: seeded (the Leader and two adjacent known neighbours
+    inside), fewest enclosed silent sites, most remembered held sites of the remnant
+    inside, most cells inside the extent, most known sites, fewest silent sites, then
+    smallest shift. If none of them is seeded, the translations that put a cell on any
+    site known or remembered held, seeded by any triangle of such sites, ranked the same
+    way.
+
+    ``seeds = "any"``: all those translations compete at once, ranked the same way with
+    the Leader's own site inside as the last tie-break before the shift: a Leader hemmed
+    in by dead robots (``kill``) no longer has to keep the shape on itself when another
+    seed triangle keeps far more of the remnant.
+
+    ``seeds = "silent"``: as "any" when the Leader knows of silent sites inside its
+    remnant (``view.enclosed``: robots died among the living), else as "leader".
     """
+    if seeds == "silent":
+        seeds = "any" if view.enclosed else "leader"
     own = [(leader[0] - int(sx), leader[1] - int(sy)) for sx, sy in cells.tolist()]
     held = view.known | {leader}
     best = _best(cells, own, triangles_at(leader, held), view)
-    if best is not None and best[0] == 0:
+    if seeds == "leader" and best is not None and best[0] == 0:
         return best[-2], best[-1]
     # sites it remembers held in the remnant count too: it heard few robots itself
     held |= view.remnant
     triangles = [t for tag in sorted(held) for t in triangles_at(tag, held)]
     if triangles:
         shifts = sorted({(kx - int(sx), ky - int(sy)) for kx, ky in held for sx, sy in cells})
-        anywhere = _best(cells, shifts, triangles, view)
+        anywhere = _best(cells, shifts, triangles, view, leader if seeds == "any" else None)
         if anywhere is not None and anywhere[0] == 0:
             return anywhere[-2], anywhere[-1]
     return None if best is None else (best[-2], best[-1])
@@ -90,9 +103,11 @@ def _best(
     shifts: list[Tag],
     triangles: list[tuple[Tag, Tag, Tag]],
     view: RemnantView,
+    leader: Tag | None = None,
 ) -> tuple[int, ...] | None:
     """The least ranking key (see ``choose_translation``) over ``shifts``, ending with the
-    shift (tx, ty); None when no shift fits."""
+    shift (tx, ty); None when no shift fits. With ``leader``, a shift that keeps the
+    Leader's site wins a tie before the shortest shift does."""
     best: tuple[int, ...] | None = None
     for tx, ty in shifts:
         moved = cells + np.array([tx, ty])
@@ -103,8 +118,8 @@ def _best(
         within = 0 if view.extent is None else int(cells_in(moved, view.extent).sum())
         key = (
             0 if seeded else 1, len(sites & view.enclosed), -len(sites & view.remnant),
-            -within, -len(sites & view.known), len(sites & view.silent), abs(tx) + abs(ty),
-            tx, ty,
+            -within, -len(sites & view.known), len(sites & view.silent),
+            0 if leader is None or leader in sites else 1, abs(tx) + abs(ty), tx, ty,
         )
         if best is None or key < best:
             best = key

@@ -283,7 +283,7 @@ class ETRun:
             inside = cells_in(np.array(remembered).reshape(-1, 2), extent)
             remnant = {t for t, keep in zip(remembered, inside, strict=True) if keep}
         view = RemnantView(known, remnant, silent, enclosed, extent, ctl.fits)
-        shift = choose_translation(cells, (lx, ly), view)
+        shift = choose_translation(cells, (lx, ly), view, self.config.et.placement_seeds)
         if shift is None:
             return cells, 0, 0
         tx, ty = shift
