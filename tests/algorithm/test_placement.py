@@ -7,6 +7,7 @@ import pytest
 
 from etswarm.algorithm.params import ETParams
 from etswarm.algorithm.placement import RemnantView, choose_translation, triangles_at
+from etswarm.algorithm.run import ETRun, RunConfig
 from etswarm.errors import EtswarmError
 
 #: A bar of 3 x 2 cells (tags).
@@ -100,3 +101,39 @@ def test_silent_seeds_move_off_the_leader_only_after_deaths() -> None:
     dead = {(20, 20)}
     hemmed = RemnantView(known, bar, dead, dead, None, always_fits)
     assert sites_after(choose_translation(BAR, leader, hemmed, seeds="silent")) == bar
+
+
+def kept_after_kill(seeds: str) -> tuple[int, int, bool]:
+    """`T` seed 15, ``kill random=0.1`` when formed: run until the remnant's Leader has
+    its target. Returns how many live robots stand on a site of the new target (by the
+    tags they held), how many dead robots' sites it covers, and whether it holds the
+    Leader's site. (Traced in session 22.)"""
+    run = ETRun(
+        RunConfig(shape="T", seed=15, max_time_s=3 * 3600, damage=("kill random=0.1",),
+                  et=ETParams(placement_seeds=seeds))
+    )
+    while not any(e["kind"] == "damage" for e in run.events):
+        assert run.sim_time_s < 2 * 3600, "the T did not form"
+        run.advance(31 * 10)
+    tags = run.controller.tags.copy()
+    alive = run.world.alive.copy()
+    while not any(e["kind"] == "census" for e in run.events):
+        assert run.sim_time_s < 3 * 3600, "no regeneration"
+        run.advance(31)
+    census = next(e for e in run.events if e["kind"] == "census")
+    target = {tuple(t) for t in run.controller.slot_cells[census["slot"]].tolist()}
+    live = sum(tuple(t) in target for t in tags[alive].tolist())
+    dead = sum(tuple(t) in target for t in tags[~alive].tolist())
+    return live, dead, tuple(tags[census["leader"]].tolist()) in target
+
+
+def test_a_leader_hemmed_in_by_dead_robots_seeds_where_the_remnant_is() -> None:
+    """Kept on the Leader, the scaled T covers few of the remnant's sites; with the
+    default ("silent": the Leader knows robots died round it) it covers most of them and
+    leaves the Leader out."""
+    live_paper, _, on_leader = kept_after_kill("leader")
+    assert on_leader
+    live, dead, on_leader_now = kept_after_kill("silent")
+    assert live >= 20 and live >= 3 * live_paper, (live, live_paper)
+    assert not on_leader_now
+    assert dead == 0

@@ -21,6 +21,11 @@ from etswarm.shapes.lattice import NEIGHBOUR_OFFSETS
 
 Tag = tuple[int, int]
 
+#: With ``seeds`` "any", another seed triangle wins over the Leader's own only when it
+#: covers at least this share of the shape's cells more of the remnant: a placement off
+#: the Leader starts growth from every kept robot at once (none is the Active seed).
+LEAVE_LEADER_SHARE = 0.2
+
 #: The six neighbour offsets in turn round a site (consecutive ones are adjacent).
 RING: list[Tag] = [(int(a), int(b)) for a, b in NEIGHBOUR_OFFSETS]
 
@@ -72,10 +77,12 @@ def choose_translation(
     site known or remembered held, seeded by any triangle of such sites, ranked the same
     way.
 
-    ``seeds = "any"``: all those translations compete at once, ranked the same way with
-    the Leader's own site inside as the last tie-break before the shift: a Leader hemmed
-    in by dead robots (``kill``) no longer has to keep the shape on itself when another
-    seed triangle keeps far more of the remnant.
+    ``seeds = "any"``: the best translation seeded by any triangle (ranked the same way,
+    the Leader's own site inside as the last tie-break before the shift) replaces the
+    Leader's own when it covers fewer enclosed silent sites, or as many and far more of
+    the remnant (``LEAVE_LEADER_SHARE``): a Leader hemmed in by dead robots (``kill``)
+    no longer has to keep the shape on itself when another seed triangle keeps far more
+    of the remnant.
 
     ``seeds = "silent"``: as "any" when the Leader knows of silent sites inside its
     remnant (``view.enclosed``: robots died among the living), else as "leader".
@@ -85,7 +92,8 @@ def choose_translation(
     own = [(leader[0] - int(sx), leader[1] - int(sy)) for sx, sy in cells.tolist()]
     held = view.known | {leader}
     best = _best(cells, own, triangles_at(leader, held), view)
-    if seeds == "leader" and best is not None and best[0] == 0:
+    seeded_here = best is not None and best[0] == 0
+    if seeds == "leader" and seeded_here:
         return best[-2], best[-1]
     # sites it remembers held in the remnant count too: it heard few robots itself
     held |= view.remnant
@@ -94,8 +102,20 @@ def choose_translation(
         shifts = sorted({(kx - int(sx), ky - int(sy)) for kx, ky in held for sx, sy in cells})
         anywhere = _best(cells, shifts, triangles, view, leader if seeds == "any" else None)
         if anywhere is not None and anywhere[0] == 0:
+            if seeded_here and not _far_better(anywhere, best, len(cells)):
+                return best[-2], best[-1]
             return anywhere[-2], anywhere[-1]
     return None if best is None else (best[-2], best[-1])
+
+
+def _far_better(other: tuple[int, ...], own: tuple[int, ...], n_cells: int) -> bool:
+    """Whether placement key ``other`` is worth leaving the Leader's own seeds for: it
+    covers fewer enclosed silent sites, or as many and at least ``LEAVE_LEADER_SHARE`` of
+    the shape's cells more of the remembered remnant (``_best``'s keys: [1] enclosed,
+    [2] minus the remnant covered)."""
+    if other[1] != own[1]:
+        return other[1] < own[1]
+    return own[2] - other[2] >= max(1.0, LEAVE_LEADER_SHARE * n_cells)
 
 
 def _best(
