@@ -16,6 +16,11 @@ Leader): exact ones, error (count minus the remnant's robots at the census; mean
 |error|), mean time from Leader to count and from the election's start to count
 (simulated s), and how the censuses ended (tree; walks: returned, enclosed, stuck,
 timeout, lost). ``--out FILE`` keeps every run's JSON summary.
+
+By default a run has ``--max-time`` in all, so a slow first formation leaves less time to
+regrow. With ``--regrow-time S`` the first formation has ``--max-time`` (runs whose first
+formation took longer do not count) and every remnant has S simulated seconds from the
+damage to re-form.
 """
 
 from __future__ import annotations
@@ -82,28 +87,39 @@ HEADER = (
 
 def report(
     shape: str, damage: str, census: str, seeds: int, runs: list[dict[str, Any]],
-    min_robots: int = 6,
+    min_robots: int = 6, first_limit_s: float | None = None,
+    regrow_limit_s: float | None = None,
 ) -> str:
     """One table row for the summaries ``runs`` of a case and census method; a run
-    succeeds when every remnant of at least ``min_robots`` robots re-formed."""
+    succeeds when every remnant of at least ``min_robots`` robots re-formed. With
+    ``regrow_limit_s`` only runs whose first formation completed within
+    ``first_limit_s`` count, and a remnant re-formed only within ``regrow_limit_s``
+    simulated seconds of the damage."""
     formed = reformed = leaders = dups = small = small_formed = 0
     times: list[float] = []
     errors: list[int] = []
     after_leader: list[float] = []
     after_election: list[float] = []
     results: Counter[str] = Counter()
+    def in_time(component: dict[str, Any]) -> bool:
+        return component["formed"] and (
+            regrow_limit_s is None or component["time_to_stable_s"] <= regrow_limit_s
+        )
+
     for s in runs:
         if not s["formed"]:
             continue
+        if first_limit_s is not None and s["formation_time_s"] > first_limit_s:
+            continue
         formed += 1
         comps = [c for c in s["components"] if c["robots"] >= min_robots]
-        reformed += all(c["formed"] for c in comps)
+        reformed += all(in_time(c) for c in comps)
         smaller = [c for c in s["components"] if 3 <= c["robots"] < min_robots]
         small += len(smaller)
         small_formed += sum(c["formed"] for c in smaller)
         leaders += s["max_leaders_per_component"] <= 1
         dups += bool(s["duplicate_tags"])
-        times += [c["time_to_stable_s"] / 60 for c in comps if c["formed"]]
+        times += [c["time_to_stable_s"] / 60 for c in comps if in_time(c)]
         for e in s["events"]:
             if e["kind"] != "census":
                 continue
@@ -150,7 +166,17 @@ def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__)
     parser.add_argument("--seeds", type=int, default=10)
     parser.add_argument("--first-seed", type=int, default=0)
-    parser.add_argument("--max-time", type=float, default=4 * 3600.0)
+    parser.add_argument(
+        "--max-time", type=float, default=4 * 3600.0,
+        help="Simulated s per run, first formation included (with --regrow-time: for the "
+        "first formation alone).",
+    )
+    parser.add_argument(
+        "--regrow-time", type=float, default=None, metavar="S",
+        help="Give every run S simulated s after the damage instead: runs last --max-time "
+        "+ S, count only when their first formation took at most --max-time, and succeed "
+        "when every remnant re-formed within S of the damage.",
+    )
     parser.add_argument("--census", choices=("tree", "walk", "both"), default="both")
     parser.add_argument("--jobs", type=int, default=1, help="Processes running seeds.")
     parser.add_argument(
@@ -182,13 +208,17 @@ def main() -> None:
     with ProcessPoolExecutor(max_workers=args.jobs) as pool:
         for shape, damage in cases:
             for census in methods:
-                work = [(shape, damage, census, seed, args.max_time, et_options) for seed in seeds]
+                limit = args.max_time + (args.regrow_time or 0.0)
+                work = [(shape, damage, census, seed, limit, et_options) for seed in seeds]
                 runs = list(pool.map(one_run, work))
                 if args.out:
                     for run in runs:
                         args.out.write(json.dumps(run) + "\n")
                     args.out.flush()
-                row = report(shape, damage, census, args.seeds, runs, args.min_robots)
+                row = report(
+                    shape, damage, census, args.seeds, runs, args.min_robots,
+                    args.max_time if args.regrow_time is not None else None, args.regrow_time,
+                )
                 print(row, flush=True)
 
 
