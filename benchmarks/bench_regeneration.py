@@ -101,6 +101,7 @@ def report(
     after_leader: list[float] = []
     after_election: list[float] = []
     results: Counter[str] = Counter()
+
     def in_time(component: dict[str, Any]) -> bool:
         return component["formed"] and (
             regrow_limit_s is None or component["time_to_stable_s"] <= regrow_limit_s
@@ -205,10 +206,10 @@ def main() -> None:
     print(f"load average {os.getloadavg()}")
     print(HEADER)
     seeds = range(args.first_seed, args.first_seed + args.seeds)
+    limit = args.max_time + (args.regrow_time or 0.0)  # simulated s per run
     with ProcessPoolExecutor(max_workers=args.jobs) as pool:
         for shape, damage in cases:
             for census in methods:
-                limit = args.max_time + (args.regrow_time or 0.0)
                 work = [(shape, damage, census, seed, limit, et_options) for seed in seeds]
                 runs = list(pool.map(one_run, work))
                 if args.out:
