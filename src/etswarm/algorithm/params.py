@@ -55,7 +55,8 @@ C_REPORT_PATIENCE = 38  # 1: a Stable robot waits longer for neighbours it only 
 C_PINCH_REFUSALS = 39  # a searcher refuses at most this many sites that would pinch a free one
 C_REGROW_PINCH_REFUSALS = 40  # the same while it searches for a regenerated target
 C_REGROW_OFFSETS = 41  # REGROW_OFFSETS_*: what a robot kept on its site does with its offset
-N_CI = 42
+C_AVOID_FOREIGN = 42  # 1: searchers ignore placed robots off their target (obstacles only)
+N_CI = 43
 
 F_SPACING = 0  # lattice spacing d
 F_PAIR_TOL = 1  # two references within this of d trigger a site candidate
@@ -360,6 +361,13 @@ class ETParams:
     #: it hears only two placed neighbours (a tip or an edge), not only at one with three
     #: or more; 0: never.
     two_neighbour_widen_s: float = 0.0
+    #: A searcher that hears a placed robot whose tag is not a site of its own target
+    #: (a robot of a sibling remnant's shape, cut from the same lattice, or one that has
+    #: not yet adopted the new target): "avoid" keeps clear of it as of any obstacle and
+    #: neither edge-follows it nor localises from it; "follow" treats it as part of the
+    #: shape (before session 23). Traced on `H` `split y=mid` seed 0: the two searchers
+    #: of one leg's remnant went round the other leg's finished shape for 2.5 h.
+    foreign_robots: str = "avoid"
 
     def __post_init__(self) -> None:
         for f in fields(self):
@@ -387,6 +395,9 @@ class ETParams:
                     raise EtswarmError(
                         f"placement_seeds must be one of {PLACEMENT_SEEDS}, got {value!r}"
                     )
+            elif f.name == "foreign_robots":
+                if value not in ("avoid", "follow"):
+                    raise EtswarmError(f"foreign_robots must be 'avoid' or 'follow', got {value!r}")
             elif f.name == "release_order":
                 if value not in ("far", "id"):
                     raise EtswarmError(f"release_order must be 'far' or 'id', got {value!r}")
@@ -465,6 +476,7 @@ class ETParams:
         ci[C_LOST_BEACON] = 1 if self.lost_beacon == "on" else 0
         ci[C_LOST_YIELD] = 1 if self.lost_yield == "on" else 0
         ci[C_RELEASE_FAR] = 1 if self.release_order == "far" else 0
+        ci[C_AVOID_FOREIGN] = 1 if self.foreign_robots == "avoid" else 0
         ci[C_SETTLE_RETRIES] = self.settle_retries
         ci[C_REGROW_RETRIES] = self.regrowth_settle_retries
         ci[C_TICKS_HOVER] = round(self.regrowth_hover_s * ticks_per_s)

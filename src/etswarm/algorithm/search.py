@@ -81,6 +81,7 @@ from etswarm.algorithm.memory import (
 from etswarm.algorithm.messages import ANCHORED_BIT
 from etswarm.algorithm.offsets import estimate_offset, expected_distance
 from etswarm.algorithm.params import (
+    C_AVOID_FOREIGN,
     C_CREEP,
     C_FILL_LOOKAHEAD,
     C_HOLE_MEMORY,
@@ -330,6 +331,14 @@ def in_window(dist_a, dist_b, aim, cf, tol_scale):  # type: ignore[no-untyped-de
 
 
 @njit(inline="always")
+def foreign(i, m, nb, gene_flag, ci):  # type: ignore[no-untyped-def]
+    """Placed robot m of robot i's table holds a tag that is no site of i's target: it
+    belongs to another remnant's shape (a sibling cut from the same lattice) or has not
+    adopted the target yet. Every placed robot of the target holds one of its sites."""
+    return gene_at(gene_flag, ci, nb[i, m, NB_TX], nb[i, m, NB_TY]) != 1
+
+
+@njit(inline="always")
 def second_ring_side(dx, dy):  # type: ignore[no-untyped-def]
     """For tags that differ by (dx, dy) = DIR[q] + DIR[q + 1] (the second ring, sqrt(3)
     spacings apart), return q: the sites next to both are at DIR[q] and DIR[q + 1] from
@@ -454,10 +463,13 @@ def find_site(  # type: ignore[no-untyped-def]
     # site's centre; the window is tested on readings corrected by the difference.
     offsets_on = ci[C_OFFSETS] == 1
     pre_tol = pair_tol + OFFSET_PREFILTER_MM if offsets_on else pair_tol
+    avoid_foreign = ci[C_AVOID_FOREIGN] == 1
     for a in range(slots):
         if nb[i, a, NB_ID] < 0 or not is_placed(nb[i, a, NB_STATE]):
             continue
         if nb[i, a, NB_LAST] < since or abs(nb_dist[i, a] - pair_aim) > pre_tol:
+            continue
+        if avoid_foreign and foreign(i, a, nb, gene_flag, ci):
             continue
         ax = nb[i, a, NB_TX]
         ay = nb[i, a, NB_TY]
@@ -465,6 +477,8 @@ def find_site(  # type: ignore[no-untyped-def]
             if nb[i, b, NB_ID] < 0 or not is_placed(nb[i, b, NB_STATE]):
                 continue
             if nb[i, b, NB_LAST] < since or abs(nb_dist[i, b] - pair_aim) > pre_tol:
+                continue
+            if avoid_foreign and foreign(i, b, nb, gene_flag, ci):
                 continue
             if not offsets_on and not in_window(nb_dist[i, a], nb_dist[i, b], pair_aim, cf, scale):
                 # Settle midway between the two references, not where the window opens.
@@ -660,7 +674,9 @@ def search_rule(  # type: ignore[no-untyped-def]
     lower_slot = -1
     beacon_est = FAR
     beacon_slot = -1
+    foreign_est = FAR
     look_for_beacon = ci[C_LOST_BEACON] == 1
+    avoid_foreign = ci[C_AVOID_FOREIGN] == 1
     for m in range(slots):
         if nb[i, m, NB_ID] < 0 or tick - nb[i, m, NB_LAST] > steer_fresh:
             continue
@@ -678,7 +694,9 @@ def search_rule(  # type: ignore[no-untyped-def]
                 nearest_lower_searcher = est
                 lower_slot = m
         elif is_placed(st):
-            if est < placed_est:
+            if avoid_foreign and foreign(i, m, nb, gene_flag, ci):
+                foreign_est = min(foreign_est, est)  # not its shape: an obstacle
+            elif est < placed_est:
                 placed_est = est
                 placed_slot = m
         elif est < queued_est:
@@ -690,7 +708,7 @@ def search_rule(  # type: ignore[no-untyped-def]
     if placed_slot >= 0:
         reading = nb_dist[i, placed_slot]
         nearest = placed_est
-        obstacle = min(queued_est, nearest_searcher)
+        obstacle = min(queued_est, nearest_searcher, foreign_est)
         follow_reference(i, ri, nb, placed_slot, moving)
         track_trend(i, ri, nb, nb_dist, placed_slot, R_REF_ID)
         ri[i, R_ON_SHAPE] = 1
@@ -705,7 +723,7 @@ def search_rule(  # type: ignore[no-untyped-def]
             ri[i, R_FROM_ID] = -1  # it turned round
         reading = nb_dist[i, queued_slot]
         nearest = queued_est
-        obstacle = nearest_searcher
+        obstacle = min(nearest_searcher, foreign_est)
         follow_reference(i, ri, nb, queued_slot, moving)
         track_trend(i, ri, nb, nb_dist, queued_slot, R_REF_ID)
     else:
@@ -713,7 +731,7 @@ def search_rule(  # type: ignore[no-untyped-def]
         # follow a searcher that hears the group (it leads back into earshot).
         lost = True
         nearest = FAR
-        obstacle = nearest_searcher
+        obstacle = min(nearest_searcher, foreign_est)
         if beacon_slot >= 0:
             beacon = True
             reading = nb_dist[i, beacon_slot]

@@ -1,0 +1,89 @@
+"""Searchers and placed robots of another remnant's shape (``ETParams.foreign_robots``).
+
+A split can leave remnants side by side: the bottom half of an `H` cut through the middle
+is its two legs, each a remnant of its own within a few lattice steps of the other. Both
+regrow a scaled `H` for the same epoch, in the same frame of tags. Traced on `H` `split
+y=mid` seed 0 (session 23): the two searchers of one leg's remnant went round the other
+leg's finished shape, from 5700 s to the end of the run, and their own shape stayed two
+sites short. A placed robot whose tag is no site of a searcher's target is now an
+obstacle to it, not a robot to follow or to localise from.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from etswarm.algorithm.memory import NB_ID, NB_LAST, NB_STATE, NB_TS, NB_TX, NB_TY, allocate
+from etswarm.algorithm.params import ETParams
+from etswarm.algorithm.run import ETRun, RunConfig
+from etswarm.algorithm.search import find_site, foreign, window_centre
+from etswarm.algorithm.states import State
+from etswarm.errors import EtswarmError
+
+#: Tags -3..3 in both axes for the gene grid; the memory window of held sites.
+GENE_X0 = -3
+WINDOW = (-2, -2)
+
+
+def pair_off_the_target(et: ETParams):  # type: ignore[no-untyped-def]
+    """A searcher (robot 0) hearing two Active robots at d, on (0, 0) and (1, 0), whose
+    common neighbour sites (1, 1) and (0, -1) are the only sites of its target: the two
+    belong to some other shape."""
+    gene_flag = np.zeros((7, 7), dtype=np.int64)
+    for x, y in [(1, 1), (0, -1)]:
+        gene_flag[x - GENE_X0, y - GENE_X0] = 1
+    ci, cf = et.pack(31, gene_x0=GENE_X0, gene_y0=GENE_X0)
+    _, nb, nb_dist = allocate(1)
+    for slot, (rid, (x, y)) in enumerate([(1, (0, 0)), (2, (1, 0))]):
+        nb[0, slot, NB_ID] = rid
+        nb[0, slot, NB_STATE] = State.ACTIVE
+        nb[0, slot, NB_TX] = x
+        nb[0, slot, NB_TY] = y
+        nb[0, slot, NB_TS] = 1
+        nb[0, slot, NB_LAST] = 10
+    nb_dist[0, :2] = (40.0, 40.6)
+    return nb, nb_dist, gene_flag, ci, cf
+
+
+def site_from_pair(et: ETParams) -> tuple[bool, int, int]:
+    nb, nb_dist, gene_flag, ci, cf = pair_off_the_target(et)
+    held = np.zeros((5, 5), dtype=np.uint8)
+    found, x, y, _ = find_site(0, 10, 0, True, 1, -1, 0, nb, nb_dist, gene_flag, ci, cf, 1.0,
+                               3, held, *WINDOW, window_centre(cf, 0), 1.0)
+    return bool(found), int(x), int(y)
+
+
+def test_a_robot_is_foreign_when_its_tag_is_no_site_of_the_target() -> None:
+    nb, _, gene_flag, ci, _ = pair_off_the_target(ETParams())
+    assert foreign(0, 0, nb, gene_flag, ci) and foreign(0, 1, nb, gene_flag, ci)
+    nb[0, 1, NB_TX], nb[0, 1, NB_TY] = 1, 1
+    assert not foreign(0, 1, nb, gene_flag, ci)
+    nb[0, 1, NB_TX] = 40  # beyond the gene grid: no site either
+    assert foreign(0, 1, nb, gene_flag, ci)
+
+
+def test_a_searcher_does_not_localise_from_robots_of_another_shape() -> None:
+    # Before session 23 the pair put the searcher on (1, 1), a site of its own target,
+    # measured from a lattice that is not its own.
+    assert site_from_pair(ETParams(foreign_robots="follow")) == (True, 1, 1)
+    assert site_from_pair(ETParams())[0] is False
+
+
+def test_foreign_robots_takes_only_its_two_values() -> None:
+    with pytest.raises(EtswarmError, match="foreign_robots"):
+        ETParams(foreign_robots="ignore")
+
+
+def test_each_leg_of_a_cut_h_regrows_with_its_own_searchers() -> None:
+    # Traced: with "follow" the 11-robot leg ends the 4 h run with two free sites and its
+    # two searchers going round the 12-robot leg's finished shape.
+    run = ETRun(RunConfig(shape="H", seed=0, damage=("split y=mid",), max_time_s=2 * 3600))
+    summary = run.run()
+    groups = summary["components"]
+    assert sorted(c["robots"] for c in groups) == [11, 12, 27]
+    for group in groups:
+        assert group["formed"] and group["jaccard"] == 1.0
+        assert group["census_count"] == group["robots"] == group["target_cells"]
+    assert summary["duplicate_tags"] == []
+    assert summary["max_leaders_per_component"] <= 1
