@@ -21,7 +21,13 @@ from etswarm.algorithm.memory import (
     allocate,
 )
 from etswarm.algorithm.params import ETParams
-from etswarm.algorithm.release import HOPS_NONE, crowded_long, queued_rule, shape_hops
+from etswarm.algorithm.release import (
+    HOPS_NONE,
+    HOPS_PARKED,
+    crowded_long,
+    queued_rule,
+    shape_hops,
+)
 from etswarm.algorithm.run import ETRun, RunConfig
 from etswarm.algorithm.states import State
 
@@ -73,6 +79,38 @@ def test_the_far_end_of_a_chain_leaves_first(order: str, leaves: int) -> None:
     assert left == [leaves]
     if order == "far":
         assert [ri[i, R_SHAPE_HOPS] for i in (5, 0, 7)] == [1, 2, 3]
+
+
+@pytest.mark.parametrize("order", ["far", "id"])
+def test_a_robot_of_a_remnant_too_small_to_grow_holds_back_no_release(order: str) -> None:
+    # Robot 9 is all that is left of its remnant (its target is empty, limit 0); robot 4,
+    # of the remnant beside it, hears it and the placed robot 2 of its own shape. (With
+    # lowest-ID release robot 9 held back only robots of higher IDs.)
+    ri, nb, _ = allocate(10)
+    ri[:, R_EPOCH] = 1
+    ri[:, R_QMIN_SINCE] = 0
+    ri[9, R_SHAPE_HOPS] = HOPS_NONE
+    ci, _ = ETParams(release_order=order).pack(31, 0, 0)
+    hear(nb, 9, 0, 4, State.QUEUED, 1)
+    queued_rule(9, TICK, ri, nb, ci, 0)
+    assert ri[9, R_STATE] == State.QUEUED and ri[9, R_SHAPE_HOPS] == HOPS_PARKED
+    hear(nb, 4, 0, 2, State.STABLE, 0)
+    hear(nb, 4, 1, 9, State.QUEUED, int(ri[9, R_SHAPE_HOPS]))
+    queued_rule(4, TICK, ri, nb, ci, 23)
+    assert ri[4, R_STATE] == State.SEARCH
+    # Before session 23 robot 9 sent HOPS_NONE: the farthest from any shape (and, by ID,
+    # not the lowest), robot 4 waited for it to leave first, for ever.
+    # (robot 5 stands where robot 4 stood, hearing the same)
+    hear(nb, 5, 0, 2, State.STABLE, 0)
+    hear(nb, 5, 1, 9, State.QUEUED, HOPS_NONE)
+    queued_rule(5, TICK, ri, nb, ci, 23)
+    assert (ri[5, R_STATE] == State.SEARCH) == (order == "id")
+
+
+def test_a_parked_robot_is_no_way_to_the_shape() -> None:
+    ri, nb, ci = chain("far")
+    hear(nb, 7, 1, 3, State.QUEUED, HOPS_PARKED)
+    assert shape_hops(7, TICK, ri, nb, int(ci[0])) == 3
 
 
 def test_a_split_t_regrows_both_remnants_with_far_first_release() -> None:
@@ -185,3 +223,17 @@ def test_a_queue_broken_near_the_shape_leaves_when_releases_stop() -> None:
     # The paper's rule (wait 0) lets it go at once.
     ri, nb, ci = broken_queue(0.0)
     assert evaluate_until(ri, nb, ci, TICK + 30 * 31) is not None
+
+
+def test_a_lone_robot_left_by_a_removal_does_not_stall_the_remnant_beside_it() -> None:
+    # Traced (session 23): the removal leaves robot 26 alone, too small a remnant to grow,
+    # in earshot of one Queued robot of the 23-robot remnant, which waited for it to leave
+    # first until the end of the 4 h run, one site short.
+    summary = ETRun(RunConfig(shape="L", seed=30, damage=("remove random=0.2",),
+                              max_time_s=5400)).run()
+    groups = summary["components"]
+    assert [g["robots"] for g in groups if g["too_small"]] == [1]
+    grown = [g for g in groups if not g["too_small"]]
+    assert [g["robots"] for g in grown] == [23]
+    assert grown[0]["formed"] and grown[0]["jaccard"] == 1.0
+    assert summary["states"]["Queued"] == 1

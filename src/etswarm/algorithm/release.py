@@ -61,6 +61,11 @@ from etswarm.algorithm.search import begin_search
 
 #: Hop count of a Queued robot that knows no way to the shape (also the largest count).
 HOPS_NONE = 255
+#: Hop count sent after a regeneration by a Queued robot whose target is empty (its
+#: remnant was too small to seed a shape): it never leaves, and the Queued robots that
+#: hear it, of a neighbouring remnant, leave it out of their release (a real count is at
+#: least 1).
+HOPS_PARKED = 0
 #: ``queued_rule``'s answer for a robot whose evaluation nothing but a message can change.
 NEVER = 1 << 62
 
@@ -80,8 +85,9 @@ def shape_hops(i, tick, ri, nb, fresh):  # type: ignore[no-untyped-def]
         st = nb[i, m, NB_STATE]
         if is_placed(st):
             return 1
-        if st == QUEUED and nb[i, m, NB_HOPS] < least:
-            least = nb[i, m, NB_HOPS]
+        hops = nb[i, m, NB_HOPS]
+        if st == QUEUED and hops != HOPS_PARKED and hops < least:
+            least = hops
     return min(least + 1, HOPS_NONE)
 
 
@@ -114,7 +120,11 @@ def queued_rule(i, tick, ri, nb, ci, limit):  # type: ignore[no-untyped-def]
     ``C_TICKS_HOLD`` (``release_hold_s``) it also waits out the release hold it heard of
     (``R_HOLD_UNTIL``, see ``ETParams.release_hold_s``). In a regenerated remnant a robot
     that has waited ``C_TICKS_CROWDED`` ticks for the searchers to clear leaves anyway
-    (``crowded_long``, ``ETParams.regrowth_crowded_s``).
+    (``crowded_long``, ``ETParams.regrowth_crowded_s``). A robot whose regenerated target
+    is empty (``limit`` 0: its remnant was too small to seed) sends ``HOPS_PARKED``, and
+    the Queued robots that hear it leave it out: it would be the lowest or farthest for
+    ever (traced on `L` `remove random=0.2` seed 30: a lone robot cut off by the removal
+    held back the last release of the 23-robot remnant beside it for 3 h).
 
     Returns the first tick at which a later evaluation could give something else if the
     robot hears nothing new meanwhile (``NEVER``: none), or 0 when that is not known (it
@@ -131,7 +141,10 @@ def queued_rule(i, tick, ri, nb, ci, limit):  # type: ignore[no-untyped-def]
     lowest = i
     epoch = ri[i, R_EPOCH]
     far_first = ci[C_RELEASE_FAR] == 1 and epoch > 0
-    if far_first:
+    parked = epoch > 0 and limit == 0
+    if parked:
+        ri[i, R_SHAPE_HOPS] = HOPS_PARKED  # its remnant grows nothing: it stays put
+    elif far_first:
         ri[i, R_SHAPE_HOPS] = shape_hops(i, tick, ri, nb, fresh)
     lowest_hops = ri[i, R_SHAPE_HOPS]
     hold_ticks = ci[C_TICKS_HOLD]
@@ -159,8 +172,8 @@ def queued_rule(i, tick, ri, nb, ci, limit):  # type: ignore[no-untyped-def]
                 hold = max(hold, nb[i, m, NB_LAST] + hold_ticks)
             elif st == QUEUED and byte6 > 1:
                 hold = max(hold, nb[i, m, NB_LAST] + (byte6 - 1) * HOLD_UNIT_TICKS)
-        if st != QUEUED:
-            continue
+        if st != QUEUED or (epoch > 0 and nb[i, m, NB_HOPS] == HOPS_PARKED):
+            continue  # (a parked robot of a remnant too small to grow never leaves)
         if sid < i:
             rank = max(rank, nb[i, m, NB_QRANK] + 1)
         if far_first:
