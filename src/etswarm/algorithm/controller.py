@@ -88,6 +88,7 @@ from etswarm.algorithm.memory import (
     SLOT_WX,
     SLOT_WY,
 )
+from etswarm.algorithm.merge import contact_rule
 from etswarm.algorithm.messages import (
     ANCHORED_BIT,
     EPOCH_SHIFT,
@@ -626,6 +627,8 @@ def et_part(  # type: ignore[no-untyped-def]
         elif INACTIVE <= state <= STABLE:
             motor[i] = STOP
             placed_rule(i, tick, ri, nb, nb_dist, ci, cf)
+            if INACTIVE <= ri[i, R_STATE] <= STABLE:
+                contact_rule(i, tick, ri, nb, nb_dist, gene_flag[slot], ci)
             if (
                 ri[i, R_PHASE] == PHASE_NORMAL
                 and INACTIVE <= ri[i, R_STATE] <= STABLE

@@ -182,7 +182,10 @@ R_SEEN_FULL = R_LOST_PATH + 1
 #: Sites a searcher refused since it left the repository because it stood too far into
 #: a free neighbour site (``pinch``).
 R_PINCH_REFUSED = R_SEEN_FULL + 1
-R_FIELDS = R_PINCH_REFUSED + 1
+#: Tick + 1 since which a placed robot has heard another remnant's robot beside it
+#: without a break (0: not now; ``merge``).
+R_CONTACT_SINCE = R_PINCH_REFUSED + 1
+R_FIELDS = R_CONTACT_SINCE + 1
 
 PHASE_NORMAL = 0
 PHASE_ELECTING = 1

@@ -56,7 +56,8 @@ C_PINCH_REFUSALS = 39  # a searcher refuses at most this many sites that would p
 C_REGROW_PINCH_REFUSALS = 40  # the same while it searches for a regenerated target
 C_REGROW_OFFSETS = 41  # REGROW_OFFSETS_*: what a robot kept on its site does with its offset
 C_AVOID_FOREIGN = 42  # 1: searchers ignore placed robots off their target (obstacles only)
-N_CI = 43
+C_MERGE = 43  # 1: placed robots touching another remnant's shape start a joint election
+N_CI = 44
 
 F_SPACING = 0  # lattice spacing d
 F_PAIR_TOL = 1  # two references within this of d trigger a site candidate
@@ -368,6 +369,12 @@ class ETParams:
     #: shape (before session 23). Traced on `H` `split y=mid` seed 0: the two searchers
     #: of one leg's remnant went round the other leg's finished shape for 2.5 h.
     foreign_robots: str = "avoid"
+    #: "on": a placed robot of a regenerated target that hears, for ``merge.MERGE_AFTER_S``
+    #: without a break, a placed robot of its epoch standing within ``merge.MERGE_NEAR_MM``
+    #: whose tag is no site of its target (a robot of another remnant's shape, grown into
+    #: contact with its own) starts an election; both remnants' robots join it and elect
+    #: as one (``merge``). "off": remnants that meet stay apart.
+    merge_remnants: str = "on"
 
     def __post_init__(self) -> None:
         for f in fields(self):
@@ -378,7 +385,7 @@ class ETParams:
             elif f.name in (
                 "creep", "second_ring", "hole_memory", "fill_lookahead", "pocket", "queue_stride",
                 "silent_sites", "lost_beacon", "lost_yield", "site_offsets", "lost_homing",
-                "report_patience",
+                "report_patience", "merge_remnants",
             ):
                 if value not in ("on", "off"):
                     raise EtswarmError(f"{f.name} must be 'on' or 'off', got {value!r}")
@@ -477,6 +484,7 @@ class ETParams:
         ci[C_LOST_YIELD] = 1 if self.lost_yield == "on" else 0
         ci[C_RELEASE_FAR] = 1 if self.release_order == "far" else 0
         ci[C_AVOID_FOREIGN] = 1 if self.foreign_robots == "avoid" else 0
+        ci[C_MERGE] = 1 if self.merge_remnants == "on" else 0
         ci[C_SETTLE_RETRIES] = self.settle_retries
         ci[C_REGROW_RETRIES] = self.regrowth_settle_retries
         ci[C_TICKS_HOVER] = round(self.regrowth_hover_s * ticks_per_s)
