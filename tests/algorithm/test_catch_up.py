@@ -63,7 +63,8 @@ def place(ctl: ETController, i: int, tag: tuple[int, int]) -> None:
 def run_catch_up(ctl: ETController, i: int) -> bool:
     return bool(
         catch_up(
-            i, TICK, ctl.ri, ctl.nb, ctl.gene_flag, ctl.gene_nn, ctl.slot_info, ctl.ci
+            i, TICK, ctl.ri, ctl.nb, ctl.nb_dist, ctl.gene_flag, ctl.gene_nn, ctl.slot_info,
+            ctl.ci,
         )
     )
 
@@ -76,9 +77,22 @@ def test_a_searcher_goes_on_searching_for_the_newer_target() -> None:
     assert (ctl.ri[0, R_EPOCH], ctl.ri[0, R_TSLOT]) == (2, slot)
 
 
+def hears_placed(ctl: ETController, i: int, sender: int, tag: tuple[int, int],
+                 reading: float, epoch: int = 2) -> None:
+    """Robot i heard placed robot ``sender`` of ``epoch`` on ``tag`` just now."""
+    row = int(np.flatnonzero(ctl.nb[i, :, NB_ID] < 0)[0])
+    ctl.nb[i, row, NB_ID] = sender
+    ctl.nb[i, row, NB_STATE] = State.STABLE
+    ctl.nb[i, row, NB_EPOCH] = epoch
+    ctl.nb[i, row, NB_LAST] = TICK - 5
+    ctl.nb[i, row, NB_TX], ctl.nb[i, row, NB_TY] = tag
+    ctl.nb_dist[i, row] = reading
+
+
 def test_a_placed_robot_keeps_a_site_of_the_newer_target_but_is_not_its_seed() -> None:
     ctl, slot = controller_with_newer_target()
     place(ctl, 1, (1, 0))
+    hears_placed(ctl, 1, 0, (0, 0), 41.0)  # a robot of the newer target, a site away
     place(ctl, 2, (-2, 2))  # not in the newer target
     assert run_catch_up(ctl, 1) and run_catch_up(ctl, 2)
     assert ctl.ri[1, R_STATE] == State.INACTIVE and ctl.ri[1, R_TS] == 2
@@ -105,3 +119,16 @@ def test_nothing_happens_without_the_newer_targets_gene() -> None:
     place(ctl, 0, (1, 0))
     assert not run_catch_up(ctl, 0)
     assert ctl.ri[0, R_STATE] == State.STABLE and ctl.ri[0, R_EPOCH] == 0
+
+
+def test_a_placed_robot_away_from_the_newer_targets_robots_searches_again() -> None:
+    # Traced on T kill random=0.3 seed 4 (session 23): robot 4 kept (-4, 3) in a piece
+    # of lattice 330-440 mm from the remnant that elected; a searcher took (-4, 3) on the
+    # remnant's lattice and the tag was held twice.
+    for heard in ([], [((0, 0), 90.0)], [((3, 0), 40.0)], [((0, 0), 41.0, 1)]):
+        ctl, _ = controller_with_newer_target()
+        place(ctl, 1, (1, 0))
+        for k, args in enumerate(heard):
+            hears_placed(ctl, 1, 2 + k, *args)
+        assert run_catch_up(ctl, 1)
+        assert ctl.ri[1, R_STATE] == State.QUEUED and ctl.ri[1, R_HAS_TAG] == 0, heard

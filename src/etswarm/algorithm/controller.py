@@ -592,7 +592,7 @@ def et_part(  # type: ignore[no-untyped-def]
                     break
         if ri[i, R_PHASE] == PHASE_NORMAL and ri[i, R_PEND_EPOCH] > ri[i, R_EPOCH]:
             # It missed the election of a newer target that it has now heard of.
-            catch_up(i, tick, ri, nb, gene_flag, gene_nn, slot_info, ci)
+            catch_up(i, tick, ri, nb, nb_dist, gene_flag, gene_nn, slot_info, ci)
         state = ri[i, R_STATE]
         slot = ri[i, R_TSLOT]
         if ri[i, R_PHASE] == PHASE_ELECTING and walking(ri[i, R_WALK]):

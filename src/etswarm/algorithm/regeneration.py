@@ -34,6 +34,7 @@ from etswarm.algorithm.kernel_util import (
     LEADER,
     QUEUED,
     SEARCH,
+    direction_index,
     gene_at,
     is_placed,
     set_state,
@@ -114,6 +115,11 @@ from etswarm.algorithm.params import (
     REGROWTH_OFFSETS,
 )
 from etswarm.algorithm.release import HOPS_NONE
+
+#: A robot catching up with a missed election keeps its site only when a placed robot of
+#: the new target on a neighbour site reads nearer than this (mm): d plus the slack of a
+#: stretched lattice (``search.ADJACENT_SLACK_MM``).
+CATCH_UP_NEAR_MM = 60.0
 
 #: Codes of ``ETParams.regrowth_offsets`` in ``ci[C_REGROW_OFFSETS]``.
 REGROW_OFFSETS_KEEP = REGROWTH_OFFSETS.index("keep")
@@ -357,14 +363,16 @@ def announcement_rule(i, tick, ri, nb, gene_flag, gene_nn, slot_info, ci):  # ty
 
 
 @njit
-def catch_up(i, tick, ri, nb, gene_flag, gene_nn, slot_info, ci):  # type: ignore[no-untyped-def]
+def catch_up(i, tick, ri, nb, nb_dist, gene_flag, gene_nn, slot_info, ci):  # type: ignore[no-untyped-def]
     """Robot i, not electing, has heard the announcement of a newer target than its own
     (R_PEND_*): it missed that election (it was searching out of range, or it belongs to
     another remnant that has come within range). It adopts the target as the electing
-    robots do, with three differences: it is never the new seed; a searcher goes on
-    searching, for the new target; and a placed robot gives up its tag when it hears a
-    robot of the new target on it (otherwise both would keep it). Returns True when it
-    adopted the target.
+    robots do, with four differences: it is never the new seed; a searcher goes on
+    searching, for the new target; a placed robot gives up its tag when it hears a robot
+    of the new target on it (otherwise both would keep it); and a placed robot keeps its
+    tag only when it hears a placed robot of the new target on a neighbour site within
+    ``CATCH_UP_NEAR_MM`` (``joined_by_a_neighbour``). Returns True when it adopted the
+    target.
 
     Before this, such a robot worked for its old target for good: its neighbours of the
     newer one ignore robots of other epochs, so the remnant could never become Stable
@@ -392,5 +400,31 @@ def catch_up(i, tick, ri, nb, gene_flag, gene_nn, slot_info, ci):  # type: ignor
             ):
                 ri[i, R_HAS_TAG] = 0
                 break
+        if not joined_by_a_neighbour(i, tick, ri, nb, nb_dist, epoch, fresh):
+            ri[i, R_HAS_TAG] = 0  # its tag may be of another piece of lattice: search again
     adopt_target(i, tick, ri, nb, slot, epoch, -1, gene_flag, gene_nn, slot_info, ci)
     return True
+
+
+@njit
+def joined_by_a_neighbour(i, tick, ri, nb, nb_dist, epoch, fresh):  # type: ignore[no-untyped-def]
+    """Placed robot i heard, within ``fresh`` ticks, a placed robot of target ``epoch`` on
+    one of its own neighbour sites, nearer than ``CATCH_UP_NEAR_MM``: its tag fits the
+    lattice of the remnant that elected.
+
+    Traced on `T` `kill random=0.3` seed 4 (session 23): robot 4, Active on (-4, 3) in a
+    piece 330-440 mm from the remnant, missed the election, heard of it later and kept
+    (-4, 3), a site of the new target; a searcher then took (-4, 3) on the remnant's own
+    lattice, 140 mm from robot 4, and the tag was held twice."""
+    x = ri[i, R_TAG_X]
+    y = ri[i, R_TAG_Y]
+    for m in range(nb.shape[1]):
+        if nb[i, m, NB_ID] < 0 or not is_placed(nb[i, m, NB_STATE]):
+            continue
+        if nb[i, m, NB_EPOCH] != epoch or tick - nb[i, m, NB_LAST] > fresh:
+            continue
+        if nb_dist[i, m] < CATCH_UP_NEAR_MM and (
+            direction_index(nb[i, m, NB_TX] - x, nb[i, m, NB_TY] - y) >= 0
+        ):
+            return True
+    return False
