@@ -14,34 +14,25 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from etswarm.algorithm.memory import NB_ID, NB_LAST, NB_STATE, NB_TS, NB_TX, NB_TY, allocate
+from etswarm.algorithm.memory import NB_LAST, NB_TX, NB_TY
 from etswarm.algorithm.params import ETParams
 from etswarm.algorithm.run import ETRun, RunConfig
 from etswarm.algorithm.search import find_site, foreign, window_centre
-from etswarm.algorithm.states import State
 from etswarm.errors import EtswarmError
 
-#: Tags -3..3 in both axes for the gene grid; the memory window of held sites.
-GENE_X0 = -3
-WINDOW = (-2, -2)
+from .test_pair_side import GENE_X0, WINDOW, pair_world
 
 
 def pair_off_the_target(et: ETParams):  # type: ignore[no-untyped-def]
-    """A searcher (robot 0) hearing two Active robots at d, on (0, 0) and (1, 0), whose
-    common neighbour sites (1, 1) and (0, -1) are the only sites of its target: the two
-    belong to some other shape."""
-    gene_flag = np.zeros((7, 7), dtype=np.int64)
-    for x, y in [(1, 1), (0, -1)]:
-        gene_flag[x - GENE_X0, y - GENE_X0] = 1
+    """``test_pair_side.pair_world`` (a searcher hearing Active robots at d on (0, 0) and
+    (1, 0)) with only their common neighbour sites (1, 1) and (0, -1) left in the target:
+    the two belong to some other shape."""
+    _, nb, nb_dist, gene_flag, _, _, _, _ = pair_world()
+    gene_flag = gene_flag.astype(np.int64)
+    for x, y in [(0, 0), (1, 0)]:
+        gene_flag[x - GENE_X0, y - GENE_X0] = 0
     ci, cf = et.pack(31, gene_x0=GENE_X0, gene_y0=GENE_X0)
-    _, nb, nb_dist = allocate(1)
-    for slot, (rid, (x, y)) in enumerate([(1, (0, 0)), (2, (1, 0))]):
-        nb[0, slot, NB_ID] = rid
-        nb[0, slot, NB_STATE] = State.ACTIVE
-        nb[0, slot, NB_TX] = x
-        nb[0, slot, NB_TY] = y
-        nb[0, slot, NB_TS] = 1
-        nb[0, slot, NB_LAST] = 10
+    nb[0, :2, NB_LAST] = 10
     nb_dist[0, :2] = (40.0, 40.6)
     return nb, nb_dist, gene_flag, ci, cf
 
