@@ -627,8 +627,8 @@ def et_part(  # type: ignore[no-untyped-def]
         elif INACTIVE <= state <= STABLE:
             motor[i] = STOP
             placed_rule(i, tick, ri, nb, nb_dist, ci, cf)
-            if INACTIVE <= ri[i, R_STATE] <= STABLE:
-                contact_rule(i, tick, ri, nb, nb_dist, gene_flag[slot], ci)
+            # (a no-op once placed_rule has started an election: it acts in the normal phase)
+            contact_rule(i, tick, ri, nb, nb_dist, gene_flag[slot], ci)
             if (
                 ri[i, R_PHASE] == PHASE_NORMAL
                 and INACTIVE <= ri[i, R_STATE] <= STABLE

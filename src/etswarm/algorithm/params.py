@@ -101,6 +101,8 @@ ORBIT_MODES = ("bounce", "clockwise")
 REGROWTH_OFFSETS = ("keep", "reset", "zero")
 #: Where a Leader places the scaled shape (``ETParams.placement``).
 PLACEMENTS = ("extent", "local")
+#: What a searcher does with placed robots off its target (``ETParams.foreign_robots``).
+FOREIGN_MODES = ("avoid", "follow")
 #: Which seed triangle a Leader's placement may use (``ETParams.placement_seeds``).
 PLACEMENT_SEEDS = ("leader", "any", "silent")
 
@@ -403,8 +405,10 @@ class ETParams:
                         f"placement_seeds must be one of {PLACEMENT_SEEDS}, got {value!r}"
                     )
             elif f.name == "foreign_robots":
-                if value not in ("avoid", "follow"):
-                    raise EtswarmError(f"foreign_robots must be 'avoid' or 'follow', got {value!r}")
+                if value not in FOREIGN_MODES:
+                    raise EtswarmError(
+                        f"foreign_robots must be one of {FOREIGN_MODES}, got {value!r}"
+                    )
             elif f.name == "release_order":
                 if value not in ("far", "id"):
                     raise EtswarmError(f"release_order must be 'far' or 'id', got {value!r}")
