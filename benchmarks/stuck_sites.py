@@ -13,6 +13,14 @@ opposite ones (the site's mouth: 2 d = 80 mm on the ideal lattice; a 33 mm body 
 
 A neighbour nearer than about 33 mm to the site's position pinches it (no body fits);
 one farther than d + 15 mm or so stretches it (no searcher reads its pair at d).
+
+Each free site also gets its *room*: over points 1 mm apart near the site where a body fits
+(a body diameter from every robot), the least possible worst disagreement between the
+distances a robot there would read from the remnant's placed robots (those in radio range
+and the holders of the site's neighbour sites) and their lattice distances from the site.
+A few millimetres means a searcher could stand where every reading fits the site (a
+*takeable* site: what stops it is the search, not the lattice); 15 mm or more means no
+such point exists (a *torn* site: the robots round it stand too far apart or too near).
 """
 
 from __future__ import annotations
@@ -27,6 +35,43 @@ from etswarm.algorithm.run import ETRun, RunConfig
 from etswarm.algorithm.states import State
 from etswarm.measures.formation import apply_fit, rigid_fit
 from etswarm.shapes.lattice import NEIGHBOUR_OFFSETS, tags_to_xy
+
+#: A free site whose room (see the module docstring) is at most this (mm) is takeable.
+TAKEABLE_MM = 8.0
+#: Half-width (mm) of the square of points searched round the site's holders for its room.
+ROOM_REACH_MM = 60.0
+
+
+def site_room(run: ETRun, group: np.ndarray, held: dict,
+              site: tuple[int, int]) -> tuple[float, np.ndarray | None]:
+    """The free site's room (mm) and the point (2,) mm where it is reached; ``(inf, None)``
+    when no placed neighbour holds a neighbour site or no body fits near it."""
+    d = run.config.et.spacing_mm
+    pos = run.world.pos
+    body = 2.0 * run.sim_params.body_radius_mm
+    reach = run.sim_params.comm_range_mm
+    holders = [held[t] for t in ((site[0] + dx, site[1] + dy) for dx, dy in NEIGHBOUR_OFFSETS)
+               if t in held]
+    if not holders:
+        return float("inf"), None
+    placed = np.array(sorted(held.values()), dtype=np.int64)
+    tags = run.controller.tags[placed]
+    expected = np.hypot(*(tags_to_xy(tags, d) - tags_to_xy(np.array([site]), d)[0]).T)
+    holds_neighbour = np.isin(placed, holders)
+    steps = np.arange(-ROOM_REACH_MM, ROOM_REACH_MM + 1.0)
+    grid = pos[holders].mean(axis=0) + np.stack(np.meshgrid(steps, steps), -1).reshape(-1, 2)
+    clear = np.ones(len(grid), dtype=bool)
+    for chunk in np.array_split(np.arange(len(grid)), 8):
+        gaps = np.linalg.norm(grid[chunk, None, :] - pos[None, :, :], axis=2)
+        clear[chunk] = gaps.min(axis=1) >= body
+    if not clear.any():
+        return float("inf"), None
+    points = grid[clear]
+    reading = np.linalg.norm(points[:, None, :] - pos[placed][None, :, :], axis=2)
+    counted = (reading <= reach) | holds_neighbour[None, :]
+    worst = np.where(counted, np.abs(reading - expected[None, :]), 0.0).max(axis=1)
+    best = int(np.argmin(worst))
+    return float(worst[best]), points[best]
 
 
 def describe_site(run: ETRun, group: np.ndarray, held: dict, site: tuple[int, int],
@@ -60,6 +105,10 @@ def describe_site(run: ETRun, group: np.ndarray, held: dict, site: tuple[int, in
             if a is not None and b is not None:
                 gap = float(np.hypot(*(pos[a] - pos[b])))
                 lines.append(f"    {name} {k}-{(k + step) % 6}: {gap:.1f} mm")
+    room, point = site_room(run, group, held, site)
+    if point is not None:
+        kind = "takeable" if room <= TAKEABLE_MM else "torn"
+        lines.append(f"    room: {room:.1f} mm at {np.round(point, 1).tolist()} ({kind})")
     tick = run.world.tick
     for r in group[states[group] == State.SEARCH]:
         at_shape = (tick - ri[r, R_SHAPE_SINCE]) / run.ticks_per_s
