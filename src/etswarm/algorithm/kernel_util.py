@@ -9,7 +9,6 @@ from numba import njit
 from etswarm.algorithm.memory import (
     R_SINCE,
     R_STATE,
-    R_WAIT_SINCE,
 )
 from etswarm.algorithm.params import (
     C_GENE_X0,
@@ -87,7 +86,6 @@ def gene_at(grid, ci, x, y):  # type: ignore[no-untyped-def]
 def set_state(i, ri, state, tick):  # type: ignore[no-untyped-def]
     ri[i, R_STATE] = state
     ri[i, R_SINCE] = tick
-    ri[i, R_WAIT_SINCE] = 0
 
 
 @njit(inline="always")

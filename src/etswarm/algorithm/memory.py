@@ -185,10 +185,7 @@ R_PINCH_REFUSED = R_SEEN_FULL + 1
 #: Tick + 1 since which a placed robot has heard another remnant's robot beside it
 #: without a break (0: not now; ``merge``).
 R_CONTACT_SINCE = R_PINCH_REFUSED + 1
-#: Tick + 1 of an Inactive robot's first evaluation in that state (0: none yet; every
-#: state change clears it; ``placed``).
-R_WAIT_SINCE = R_CONTACT_SINCE + 1
-R_FIELDS = R_WAIT_SINCE + 1
+R_FIELDS = R_CONTACT_SINCE + 1
 
 PHASE_NORMAL = 0
 PHASE_ELECTING = 1

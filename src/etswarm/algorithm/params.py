@@ -57,9 +57,7 @@ C_REGROW_PINCH_REFUSALS = 40  # the same while it searches for a regenerated tar
 C_REGROW_OFFSETS = 41  # REGROW_OFFSETS_*: what a robot kept on its site does with its offset
 C_AVOID_FOREIGN = 42  # 1: searchers ignore placed robots off their target (obstacles only)
 C_MERGE = 43  # 1: placed robots touching another remnant's shape start a joint election
-C_TICKS_INACTIVE_WAIT = 44  # an Inactive robot beside an Active one turns Active after this
-C_TICKS_REGROW_INACTIVE_WAIT = 45  # the same while it works for a regenerated target
-N_CI = 46
+N_CI = 44
 
 F_SPACING = 0  # lattice spacing d
 F_PAIR_TOL = 1  # two references within this of d trigger a site candidate
@@ -116,7 +114,6 @@ NON_NEGATIVE: frozenset[str] = frozenset(
         "regrowth_hover_s", "regrowth_crowded_s", "regrowth_dive_mm",
         "dive_mm", "held_gossip_every", "queue_rank_wait_s", "capture_pinch_mm",
         "capture_pinch_refusals", "regrowth_pinch_refusals", "two_neighbour_widen_s",
-        "inactive_wait_s", "regrowth_inactive_wait_s",
         "capture_mouth_mm",
     }
 )
@@ -380,13 +377,6 @@ class ETParams:
     #: contact with its own) starts an election; both remnants' robots join it and elect
     #: as one (``merge``). "off": remnants that meet stay apart.
     merge_remnants: str = "on"
-    #: An Inactive robot waits to turn Active while it hears an Active neighbour (the
-    #: paper's order of growth); after this long (s) Inactive it turns Active anyway, so
-    #: that a front stalled at one site no searcher can take does not stop growth beside
-    #: it (``placed``). 0: it waits for good.
-    inactive_wait_s: float = 0.0
-    #: ... and this long while it works for a regenerated target (after damage).
-    regrowth_inactive_wait_s: float = 0.0
 
     def __post_init__(self) -> None:
         for f in fields(self):
@@ -505,8 +495,6 @@ class ETParams:
         ci[C_TICKS_HOLD] = round(self.release_hold_s * ticks_per_s)
         ci[C_STILL_READINGS] = self.still_readings
         ci[C_TICKS_CROWDED] = round(self.regrowth_crowded_s * ticks_per_s)
-        ci[C_TICKS_INACTIVE_WAIT] = round(self.inactive_wait_s * ticks_per_s)
-        ci[C_TICKS_REGROW_INACTIVE_WAIT] = round(self.regrowth_inactive_wait_s * ticks_per_s)
         cf = np.zeros(N_CF, dtype=np.float64)
         cf[F_SPACING] = self.spacing_mm
         cf[F_PAIR_TOL] = self.pair_tol_mm

@@ -38,16 +38,13 @@ from etswarm.algorithm.memory import (
     R_TAG_X,
     R_TAG_Y,
     R_TS,
-    R_WAIT_SINCE,
 )
 from etswarm.algorithm.offsets import refine_offset
 from etswarm.algorithm.params import (
     C_REPORT_PATIENCE,
     C_TICKS_DANGER,
-    C_TICKS_INACTIVE_WAIT,
     C_TICKS_NB_FRESH,
     C_TICKS_QUASI,
-    C_TICKS_REGROW_INACTIVE_WAIT,
     F_SPACING,
 )
 from etswarm.algorithm.regeneration import start_election
@@ -144,15 +141,7 @@ def placed_rule(i, tick, ri, nb, nb_dist, ci, cf):  # type: ignore[no-untyped-de
         refine_offset(i, tick, nb, nb_dist, ri, cf[F_SPACING])
 
     if state == INACTIVE:
-        if ri[i, R_WAIT_SINCE] == 0:
-            ri[i, R_WAIT_SINCE] = tick + 1
-        wait = ci[C_TICKS_INACTIVE_WAIT] if epoch == 0 else ci[C_TICKS_REGROW_INACTIVE_WAIT]
         if witnessed_stable:
-            set_state(i, ri, ACTIVE, tick)
-        elif any_active and wait > 0 and tick - (ri[i, R_WAIT_SINCE] - 1) >= wait:
-            # The front beside it has not moved for this long: a neighbour site it waits
-            # on may never be filled (pinched or torn), and while it waits no searcher may
-            # take a site next to it alone. It joins the front.
             set_state(i, ri, ACTIVE, tick)
         elif any_active:
             ri[i, R_SINCE] = tick
