@@ -10,6 +10,12 @@ opposite ones (the site's mouth: 2 d = 80 mm on the ideal lattice; a 33 mm body 
 
     .venv/bin/python benchmarks/stuck_sites.py dumbbell --damage "split y=mid" --seed 5 \\
         --et capture_mouth_mm=0
+    .venv/bin/python benchmarks/stuck_sites.py --from-runs runs.jsonl --jobs 2
+
+With ``--from-runs`` it re-runs every run of a ``bench_regeneration.py --out`` file in which
+a remnant of 6 or more robots did not re-form, and counts those remnants' free sites by
+kind: takeable, torn (below), "inactive" (every placed neighbour Inactive: the front that
+would let a searcher take it has stalled elsewhere) or "no holder" (no neighbour site held).
 
 A neighbour nearer than about 33 mm to the site's position pinches it (no body fits);
 one farther than d + 15 mm or so stretches it (no searcher reads its pair at d).
@@ -25,6 +31,10 @@ such point exists (a *torn* site: the robots round it stand too far apart or too
 
 from __future__ import annotations
 
+import json
+from collections import Counter
+from concurrent.futures import ProcessPoolExecutor
+
 import click
 import numpy as np
 
@@ -36,6 +46,8 @@ from etswarm.algorithm.states import State
 from etswarm.measures.formation import apply_fit, rigid_fit
 from etswarm.shapes.lattice import NEIGHBOUR_OFFSETS, tags_to_xy
 
+#: With --from-runs, only remnants of at least this many robots count (the issue's bar).
+MIN_ROBOTS = 6
 #: A free site whose room (see the module docstring) is at most this (mm) is takeable.
 TAKEABLE_MM = 8.0
 #: Half-width (mm) of the square of points searched round the site's holders for its room.
@@ -119,29 +131,108 @@ def describe_site(run: ETRun, group: np.ndarray, held: dict, site: tuple[int, in
     return lines
 
 
+def remnants(run: ETRun) -> list[tuple[np.ndarray, dict, list[tuple[int, int]], int]]:
+    """Per remnant of a finished run: its robots (IDs), its held sites (tag -> robot), its
+    target's free sites and its target's size."""
+    holds, _ = run._masks()
+    tags = run.controller.tags
+    out = []
+    for group in run._groups():
+        target = run.controller.slot_cells[run._slot_of(group)]
+        held = {tuple(int(v) for v in tags[r]): int(r) for r in group[holds[group]]}
+        free = [tuple(int(v) for v in c) for c in target if tuple(int(v) for v in c) not in held]
+        out.append((group, held, free, len(target)))
+    return out
+
+
+def site_kind(run: ETRun, group: np.ndarray, held: dict, site: tuple[int, int]) -> str:
+    """"takeable", "torn", "inactive" (takeable or not, but every placed neighbour is
+    Inactive, so no searcher may take it yet) or "no holder" (no neighbour site held)."""
+    states = run.controller.states
+    holders = [held[t] for t in ((site[0] + dx, site[1] + dy) for dx, dy in NEIGHBOUR_OFFSETS)
+               if t in held]
+    if not holders:
+        return "no holder"
+    if all(states[r] == State.INACTIVE for r in holders):
+        return "inactive"
+    room, point = site_room(run, group, held, site)
+    return "takeable" if point is not None and room <= TAKEABLE_MM else "torn"
+
+
+def census_of_run(task: tuple[str, str, int, float, tuple[str, ...], int]) -> tuple[str, Counter]:
+    """Re-run one run (shape, damage, seed, max time, ET options, least remnant size) and
+    count the kinds of the free sites of its remnants of at least that many robots."""
+    shape, damage, seed, max_time, et_options, min_robots = task
+    et = ETParams(**dict(parse_et_option(o) for o in et_options))
+    run = ETRun(RunConfig(shape=shape, seed=seed, damage=(damage,), max_time_s=max_time, et=et))
+    run.run()
+    kinds: Counter = Counter()
+    for group, held, free, _ in remnants(run):
+        if len(group) >= min_robots:
+            kinds.update(site_kind(run, group, held, site) for site in free)
+    return f"{shape} {damage} seed {seed}", kinds
+
+
+def unformed_runs(path: str, min_robots: int) -> list[tuple[str, str, int]]:
+    """(shape, damage, seed) of the runs in a ``bench_regeneration.py --out`` file whose
+    first formation completed and in which a remnant of ``min_robots`` or more did not
+    re-form."""
+    out = []
+    with open(path) as f:
+        for line in f:
+            s = json.loads(line)
+            if s["formation_time_s"] is None or len(s["damage"]) != 1:
+                continue
+            if all(c["formed"] for c in s["components"] if c["robots"] >= min_robots):
+                continue
+            out.append((s["shape"], s["damage"][0], int(s["seed"])))
+    return out
+
+
+def stall_census(path: str, max_time: float, et_options: tuple[str, ...], jobs: int) -> None:
+    """Print the kinds of free sites of every unformed run of ``path``, and the totals."""
+    tasks = [(*k, max_time, et_options, MIN_ROBOTS) for k in unformed_runs(path, MIN_ROBOTS)]
+    total: Counter = Counter()
+    only: Counter = Counter()
+    with ProcessPoolExecutor(jobs) as pool:
+        for name, kinds in pool.map(census_of_run, tasks):
+            click.echo(f"{name}: " + ", ".join(f"{k} {n}" for k, n in sorted(kinds.items())))
+            total.update(kinds)
+            only[next(iter(kinds)) if len(kinds) == 1 else ("none" if not kinds else "mixed")] += 1
+    click.echo(f"{len(tasks)} runs; free sites: "
+               + ", ".join(f"{k} {n}" for k, n in sorted(total.items())))
+    click.echo("runs whose free sites are all of one kind: "
+               + ", ".join(f"{k} {n}" for k, n in sorted(only.items())))
+
+
 @click.command()
-@click.argument("shape")
+@click.argument("shape", required=False)
 @click.option("--seed", type=int, default=0)
 @click.option("--damage", multiple=True, help="A damage SPEC, as for `etswarm run`.")
 @click.option("--max-time", type=float, default=4 * 3600.0)
 @click.option("--et", "et_options", multiple=True, metavar="NAME=VALUE")
-def main(shape: str, seed: int, damage: tuple[str, ...], max_time: float,
-         et_options: tuple[str, ...]) -> None:
+@click.option("--from-runs", "runs_file", type=click.Path(exists=True, dir_okay=False),
+              help="Re-run the unformed runs of a bench_regeneration.py --out file and "
+                   "count their free sites by kind instead.")
+@click.option("--jobs", type=int, default=2, help="Processes for --from-runs.")
+def main(shape: str | None, seed: int, damage: tuple[str, ...], max_time: float,
+         et_options: tuple[str, ...], runs_file: str | None, jobs: int) -> None:
     """Run SHAPE and describe the free sites of every remnant that did not form."""
+    if runs_file:
+        stall_census(runs_file, max_time, et_options, jobs)
+        return
+    if shape is None:
+        raise click.UsageError("give a SHAPE, or --from-runs FILE")
     et = ETParams(**dict(parse_et_option(o) for o in et_options))
     run = ETRun(RunConfig(shape=shape, seed=seed, damage=damage, max_time_s=max_time, et=et))
     summary = run.run()
     click.echo(f"formed {summary['formed']}, {summary['sim_time_s']:.0f} s, {summary['states']}")
-    holds, _ = run._masks()
     d = et.spacing_mm
-    for group in run._groups():
-        target = run.controller.slot_cells[run._slot_of(group)]
-        tagged = group[holds[group]]
-        tags = run.controller.tags
-        held = {tuple(int(v) for v in tags[r]): int(r) for r in tagged}
-        free = [tuple(int(v) for v in c) for c in target if tuple(int(v) for v in c) not in held]
-        click.echo(f"remnant of {len(group)} robots, target {len(target)} cells, "
+    tags = run.controller.tags
+    for group, held, free, target_cells in remnants(run):
+        click.echo(f"remnant of {len(group)} robots, target {target_cells} cells, "
                    f"{len(free)} free")
+        tagged = np.array(sorted(held.values()), dtype=np.int64)
         if not free or len(tagged) < 2:
             continue
         fit = rigid_fit(tags_to_xy(tags[tagged], d), run.world.pos[tagged])
