@@ -86,6 +86,12 @@ def site_room(run: ETRun, group: np.ndarray, held: dict,
     return float(worst[best]), points[best]
 
 
+def room_kind(room: float, point: np.ndarray | None) -> str:
+    """"takeable" when a body fits where every reading is within ``TAKEABLE_MM`` of the
+    site's, else "torn" (``site_room``'s answer)."""
+    return "takeable" if point is not None and room <= TAKEABLE_MM else "torn"
+
+
 def describe_site(run: ETRun, group: np.ndarray, held: dict, site: tuple[int, int],
                   fit: tuple) -> list[str]:
     """Lines describing free site ``site`` of remnant ``group`` (robot IDs)."""
@@ -119,8 +125,8 @@ def describe_site(run: ETRun, group: np.ndarray, held: dict, site: tuple[int, in
                 lines.append(f"    {name} {k}-{(k + step) % 6}: {gap:.1f} mm")
     room, point = site_room(run, group, held, site)
     if point is not None:
-        kind = "takeable" if room <= TAKEABLE_MM else "torn"
-        lines.append(f"    room: {room:.1f} mm at {np.round(point, 1).tolist()} ({kind})")
+        lines.append(f"    room: {room:.1f} mm at {np.round(point, 1).tolist()} "
+                     f"({room_kind(room, point)})")
     tick = run.world.tick
     for r in group[states[group] == State.SEARCH]:
         at_shape = (tick - ri[r, R_SHAPE_SINCE]) / run.ticks_per_s
@@ -140,7 +146,7 @@ def remnants(run: ETRun) -> list[tuple[np.ndarray, dict, list[tuple[int, int]], 
     for group in run._groups():
         target = run.controller.slot_cells[run._slot_of(group)]
         held = {tuple(int(v) for v in tags[r]): int(r) for r in group[holds[group]]}
-        free = [tuple(int(v) for v in c) for c in target if tuple(int(v) for v in c) not in held]
+        free = [site for site in map(tuple, target.tolist()) if site not in held]
         out.append((group, held, free, len(target)))
     return out
 
@@ -155,8 +161,7 @@ def site_kind(run: ETRun, group: np.ndarray, held: dict, site: tuple[int, int]) 
         return "no holder"
     if all(states[r] == State.INACTIVE for r in holders):
         return "inactive"
-    room, point = site_room(run, group, held, site)
-    return "takeable" if point is not None and room <= TAKEABLE_MM else "torn"
+    return room_kind(*site_room(run, group, held, site))
 
 
 def census_of_run(task: tuple[str, str, int, float, tuple[str, ...], int]) -> tuple[str, Counter]:
@@ -179,8 +184,11 @@ def unformed_runs(path: str, min_robots: int) -> list[tuple[str, str, int]]:
     re-form."""
     out = []
     with open(path) as f:
-        for line in f:
-            s = json.loads(line)
+        for row, line in enumerate(f, 1):
+            try:
+                s = json.loads(line)
+            except json.JSONDecodeError as err:
+                raise click.ClickException(f"{path}, line {row}: not JSON ({err.msg})") from err
             if s["formation_time_s"] is None or len(s["damage"]) != 1:
                 continue
             if all(c["formed"] for c in s["components"] if c["robots"] >= min_robots):
@@ -198,7 +206,7 @@ def stall_census(path: str, max_time: float, et_options: tuple[str, ...], jobs: 
         for name, kinds in pool.map(census_of_run, tasks):
             click.echo(f"{name}: " + ", ".join(f"{k} {n}" for k, n in sorted(kinds.items())))
             total.update(kinds)
-            only[next(iter(kinds)) if len(kinds) == 1 else ("none" if not kinds else "mixed")] += 1
+            only["mixed" if len(kinds) > 1 else next(iter(kinds), "none")] += 1
     click.echo(f"{len(tasks)} runs; free sites: "
                + ", ".join(f"{k} {n}" for k, n in sorted(total.items())))
     click.echo("runs whose free sites are all of one kind: "
