@@ -6,6 +6,7 @@ Formation: formed share, median formation time (simulated) and median wall time 
 and the number of runs that ended with a tag held by two robots.
 
     .venv/bin/python benchmarks/bench_et.py speed [--seconds 600] [--threads 2]
+        [--control-threads 2]
     .venv/bin/python benchmarks/bench_et.py formation [--seeds 20] [--first-seed 0]
         [--shapes T,dumbbell,starfish] [--et NAME=VALUE ...]
         [--jobs 2] [--et NAME=VALUE ...]
@@ -18,8 +19,11 @@ of each run, to check that a change of the code keeps the results byte-identical
 
 With ``--threads T`` the speed runs use ``SimParams(threads=T)`` (the threaded loop; the ET
 controller's per-robot work runs on every thread; "on T" is the share of ticks the thread
-chooser ran on T threads). With ``--jobs J`` the formation runs go to J worker processes
-(one per core: the wall times stay per run, as long as nothing else loads the machine).
+chooser ran on T threads). With ``--control-threads C`` they use
+``SimParams(control_threads=C)``: the serial loop with the controller's per-robot work on C
+threads, results identical to one thread ("on C" as above). With ``--jobs J`` the
+formation runs go to J worker processes (one per core: the wall times stay per run, as long
+as nothing else loads the machine).
 """
 
 from __future__ import annotations
@@ -85,16 +89,17 @@ def shape_path(name: str, tmp: Path) -> str:
     return name
 
 
-def speed(seconds: float, threads: int = 1, shapes: tuple[str, ...] = SPEED_SHAPES) -> None:
+def speed(seconds: float, threads: int = 1, shapes: tuple[str, ...] = SPEED_SHAPES,
+          control_threads: int = 1) -> None:
     tmp = Path(tempfile.mkdtemp())
-    print(f"load average {os.getloadavg()}, threads {threads}")
+    print(f"load average {os.getloadavg()}, threads {threads}, control threads {control_threads}")
     header = ("shape", "robots", "sim s", "wall s", "cpu s", "robot-ticks/s", "x real")
     print("{:>10} {:>7} {:>7} {:>7} {:>7} {:>14} {:>8}".format(*header))
     for name in shapes:
         shape = shape_path(name, tmp)
         run = ETRun(
             RunConfig(shape=shape, seed=0, max_time_s=seconds, layout="cluster"),
-            sim_params=SimParams(threads=threads),
+            sim_params=SimParams(threads=threads, control_threads=control_threads),
         )
         run.advance(31)  # compile / load the kernel outside the timing
         t0 = time.perf_counter()
@@ -106,9 +111,10 @@ def speed(seconds: float, threads: int = 1, shapes: tuple[str, ...] = SPEED_SHAP
         ticks = run.world.tick - ticks0
         rt = run.world.n * ticks / wall
         multi = ""
-        if threads > 1:
+        most = max(threads, control_threads)
+        if most > 1 and hasattr(run.sim, "_chooser"):
             on = run.sim._chooser.ticks_on
-            multi = f"  on {threads}: {on.get(threads, 0) / max(1, sum(on.values())):.2f}"
+            multi = f"  on {most}: {on.get(most, 0) / max(1, sum(on.values())):.2f}"
         print(
             f"{name:>10} {run.world.n:>7} {ticks / 31:>7.0f} {wall:>7.2f} {cpu:>7.2f} {rt:>14,.0f} "
             f"{ticks / 31 / wall:>8.0f}{multi}"
@@ -223,6 +229,8 @@ def main() -> None:
     parser.add_argument("--max-time", type=float, default=4 * 3600.0)
     parser.add_argument("--hash-seeds", default=None, help="hash: seeds, default 0,1")
     parser.add_argument("--threads", type=int, default=1, help="SimParams.threads (speed)")
+    parser.add_argument("--control-threads", type=int, default=1,
+                        help="SimParams.control_threads (speed)")
     parser.add_argument("--jobs", type=int, default=1, help="worker processes (formation)")
     parser.add_argument(
         "--et", type=parse_option, action="append", default=[], metavar="NAME=VALUE",
@@ -230,7 +238,8 @@ def main() -> None:
     )
     args = parser.parse_args()
     if args.what == "speed":
-        speed(args.seconds, args.threads, tuple((args.shapes or ",".join(SPEED_SHAPES)).split(",")))
+        speed(args.seconds, args.threads, tuple((args.shapes or ",".join(SPEED_SHAPES)).split(",")),
+              args.control_threads)
     elif args.what == "hash":
         seeds = [int(s) for s in (args.hash_seeds or "0,1").split(",")]
         hashes(args.seconds, args.threads, (args.shapes or "T,disc1000").split(","), seeds,

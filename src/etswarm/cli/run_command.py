@@ -77,13 +77,16 @@ from etswarm.algorithm.layout import LAYOUTS
               help="Simulator threads (SimParams.threads): the phases and the robots' "
                    "control run on this many threads; results do not depend on the count "
                    "above 1, but differ from --threads 1's (other noise draws).")
+@click.option("--control-threads", type=int, default=1, show_default=True,
+              help="With --threads 1: run the robots' control on this many threads and "
+                   "the rest on one, with results identical to --control-threads 1.")
 def run(shape: str, robots: int | None, seed: int, loss: float, noise: float, max_time: float,
         layout: str, release_interval: float | None, census: str, orbit: str, creep: bool,
         second_ring: bool, hole_memory: bool, pocket: bool, release_order: str,
         silent_sites: bool, queue_stride: bool, et_options: tuple[str, ...], fit: bool,
         damage: tuple[str, ...],
         out: Path | None, video: Path | None, fps: float, speedup: float, snapshots: bool,
-        as_json: bool, threads: int) -> None:
+        as_json: bool, threads: int, control_threads: int) -> None:
     """Grow SHAPE (a library name or a bitmap file) with the ET algorithm."""
     from etswarm.algorithm.params import ETParams, parse_et_option
     from etswarm.algorithm.run import ETRun, RunConfig
@@ -95,6 +98,8 @@ def run(shape: str, robots: int | None, seed: int, loss: float, noise: float, ma
         raise EtswarmError("--fps and --speedup must be > 0")
     if not 1 <= threads <= 256:
         raise EtswarmError(f"--threads must be in [1, 256], got {threads}")
+    if not 1 <= control_threads <= 256:
+        raise EtswarmError(f"--control-threads must be in [1, 256], got {control_threads}")
     if video is not None and video.suffix.lower() not in (".mp4", ".gif"):
         raise EtswarmError(f"--video {video}: the file must end in .mp4 or .gif")
     et = ETParams(orbit=orbit, creep="on" if creep else "off",
@@ -110,7 +115,7 @@ def run(shape: str, robots: int | None, seed: int, loss: float, noise: float, ma
     config = RunConfig(shape=shape, robots=robots, seed=seed, loss=loss, noise_mm=noise,
                        max_time_s=max_time, layout=layout, fit=fit, damage=damage, et=et,
                        census=census)
-    et_run = ETRun(config, sim_params=SimParams(threads=threads))
+    et_run = ETRun(config, sim_params=SimParams(threads=threads, control_threads=control_threads))
     for note in et_run.notes:
         click.echo(f"etswarm: {note}", err=True)
     shots = None

@@ -26,6 +26,14 @@ to arrive runs the one-thread work (the controller, grid rebuilds, pass bookkeep
 while the controller runs, the other threads build contact lists.
 The default loop is generated and compiled exactly as before.
 
+With ``SimParams.control_threads > 1`` (and threads = 1) the simulator asks for the split
+loop (``load_kernel(step, split=True, ...)``, file ``..._split_<hash>.py``): the serial
+loop's phases and random draws, but the controller's ``part_step`` runs on every thread,
+each taking pieces of ``CHUNK`` robots from a shared counter until none is left. The last
+thread to finish its pieces runs ``rest_step``, motion, collisions and the next tick's
+radio while the others wait at the barrier. Parts touch only their own robots' rows, so
+the results are the serial loop's, byte for byte, on any number of threads.
+
 The directory is ``$ETSWARM_KERNEL_DIR`` if set, else ``~/.cache/etswarm/kernels``
 (or a temporary directory when that is not writable).
 """
@@ -191,7 +199,100 @@ def run_ticks(n, tick0, cfg, grid, pos, heading, motor, led, alive, present, spe
     return scratch.cstate[CS_DONE]
 '''
 
-_loaded: dict[tuple[int, bool], ModuleType] = {}
+_TEMPLATE_SPLIT = '''"""etswarm tick loop for controller {qualname}, its parts on threads."""
+from numba import njit, prange
+
+from etswarm.sim.borrow import borrowed
+from etswarm.sim.collide import collide_phase
+from etswarm.sim.motion import move_phase
+from etswarm.sim.neighbours import grid_sync
+from etswarm.sim.radio import radio_phase, senders_by_phase
+from etswarm.sim.sync import arrive, atomic_add, atomic_load, release
+
+# controller_part and controller_rest are bound by etswarm.sim.kernel before this body
+# runs (the controller's part_step and rest_step).
+
+# fields of ``state``: dirty robots carried between ticks, ticks run, stop
+ST_DIRTY = 0
+ST_DONE = 1
+ST_STOP = 2
+ST_NEXT = 3
+# robots per piece of the controller's work that a thread takes at a time
+CHUNK = 128
+
+
+@njit(cache={cache})
+def thread_ticks(p, parts, n, tick0, cfg, grid, pos, heading, motor, led, alive, present,
+                 speed, turn_rate, tx_phase, out_on, out_type, out_data, in_count, in_type,
+                 in_data, in_dist, counters, dirty, dirty_flag, spare, trig, rng_motion,
+                 rng_radio, rng_ctl, mem, sync, state, order, first):
+    grid, mem = borrowed(grid), borrowed(mem)
+    pos, heading, motor, led = borrowed((pos, heading, motor, led))
+    alive, present, speed, turn_rate = borrowed((alive, present, speed, turn_rate))
+    tx_phase, out_on, out_type, out_data = borrowed((tx_phase, out_on, out_type, out_data))
+    in_count, in_type, in_data, in_dist = borrowed((in_count, in_type, in_data, in_dist))
+    counters, dirty, dirty_flag, spare, trig = borrowed((counters, dirty, dirty_flag, spare,
+                                                         trig))
+    sync, state, order, first = borrowed((sync, state, order, first))
+    n_robots = pos.shape[0]
+    size = CHUNK if parts > 1 else n_robots  # one thread: one part, as the serial loop
+    n_chunks = (n_robots + size - 1) // size
+    stop = mem[0]
+    for k in range(n):
+        tick = tick0 + k
+        while True:
+            chunk = atomic_add(state, ST_NEXT, 1)
+            if chunk >= n_chunks:
+                break
+            lo = chunk * size
+            hi = min(n_robots, lo + size)
+            controller_part(lo, hi, tick, alive, in_count, in_type, in_data, in_dist, motor,
+                            led, out_on, out_type, out_data, mem)
+        if arrive(sync, parts):
+            # the last thread here runs the rest of the tick and the next tick's radio
+            state[ST_NEXT] = 0
+            controller_rest(tick, alive, in_count, in_type, in_data, in_dist, motor, led,
+                            out_on, out_type, out_data, mem, rng_ctl)
+            n_dirty = move_phase(cfg, grid, pos, heading, motor, alive, present, speed,
+                                 turn_rate, dirty, dirty_flag, state[ST_DIRTY], trig,
+                                 rng_motion)
+            state[ST_DIRTY] = collide_phase(cfg, grid, pos, present, motor, dirty,
+                                            dirty_flag, n_dirty, spare, counters)
+            state[ST_DONE] = k + 1
+            if stop[0] != 0 or k + 1 == n:
+                state[ST_STOP] = 1
+            else:
+                radio_phase(tick + 1, cfg, grid, pos, alive, present, tx_phase, out_on,
+                            out_type, out_data, in_count, in_type, in_data, in_dist,
+                            counters, rng_radio, order, first)
+            release(sync)
+        if atomic_load(state, ST_STOP) != 0:
+            return
+
+
+@njit(cache={cache}, parallel=True)
+def run_ticks(n, tick0, cfg, grid, pos, heading, motor, led, alive, present, speed,
+              turn_rate, tx_phase, out_on, out_type, out_data, in_count, in_type, in_data,
+              in_dist, counters, dirty, dirty_flag, spare, trig, rng_motion, rng_radio, rng_ctl,
+              mem, sync, state, parts):
+    if n <= 0:
+        return 0
+    order, first = senders_by_phase(tx_phase, cfg.tx_period)
+    state[ST_DIRTY] = grid_sync(grid, pos, present, dirty, dirty_flag, grid.state[2])
+    state[ST_DONE] = 0
+    state[ST_STOP] = 0
+    state[ST_NEXT] = 0
+    radio_phase(tick0, cfg, grid, pos, alive, present, tx_phase, out_on, out_type, out_data,
+                in_count, in_type, in_data, in_dist, counters, rng_radio, order, first)
+    for p in prange(parts):
+        thread_ticks(p, parts, n, tick0, cfg, grid, pos, heading, motor, led, alive, present,
+                     speed, turn_rate, tx_phase, out_on, out_type, out_data, in_count,
+                     in_type, in_data, in_dist, counters, dirty, dirty_flag, spare, trig,
+                     rng_motion, rng_radio, rng_ctl, mem, sync, state, order, first)
+    return state[ST_DONE]
+'''
+
+_loaded: dict[tuple[int, bool, int, int, bool], ModuleType] = {}
 
 
 def kernel_dir() -> Path:
@@ -233,7 +334,7 @@ def _source_hash(step_py: Any, template: str = _TEMPLATE) -> str | None:
 
 
 def load_kernel(step: Any, threaded: bool = False, part_step: Any = None,
-                rest_step: Any = None) -> Any:
+                rest_step: Any = None, split: bool = False) -> Any:
     """The compiled ``run_ticks`` for controller dispatcher ``step`` (see module doc).
 
     ``threaded``: the loop of the threaded phases (:mod:`etswarm.sim.parallel`), a kernel
@@ -241,13 +342,17 @@ def load_kernel(step: Any, threaded: bool = False, part_step: Any = None,
     runs the controller as ``part_step`` on every thread (its robots) and then
     ``rest_step`` on one (both dispatchers; see :mod:`etswarm.sim.simulator`); without
     them, ``step`` on one thread.
+    ``split``: the serial loop with the controller's ``part_step`` on threads (both
+    dispatchers required; file name ending ``_split_<hash>``), see the module doc.
     """
+    if split and (threaded or part_step is None or rest_step is None):
+        raise ValueError("the split loop needs the controller's part_step and rest_step")
     if threaded and (part_step is None or rest_step is None):
         part_step = rest_step = None
-    if not threaded:
+    if not threaded and not split:
         part_step = rest_step = None
-    key = (id(step), bool(threaded), id(part_step), id(rest_step))
-    template = _TEMPLATE_THREADED if threaded else _TEMPLATE
+    key = (id(step), bool(threaded), id(part_step), id(rest_step), bool(split))
+    template = _TEMPLATE_THREADED if threaded else _TEMPLATE_SPLIT if split else _TEMPLATE
     if key in _loaded:
         return _loaded[key].run_ticks
     py_func = getattr(step, "py_func", None)
@@ -255,8 +360,8 @@ def load_kernel(step: Any, threaded: bool = False, part_step: Any = None,
         raise TypeError("controller step must be an @njit function (numba dispatcher)")
     digest = _source_hash(py_func, template)
     label = re.sub(r"[^0-9A-Za-z_]", "_", f"{py_func.__module__}_{py_func.__qualname__}")
-    if threaded:
-        label += "_mt"
+    if threaded or split:
+        label += "_mt" if threaded else "_split"
         if part_step is not None:
             label += "_parts"
             if digest is not None:
@@ -285,6 +390,9 @@ def load_kernel(step: Any, threaded: bool = False, part_step: Any = None,
     assert spec is not None and spec.loader is not None
     module = importlib.util.module_from_spec(spec)
     module.controller_step = step  # type: ignore[attr-defined]
+    if split:
+        module.controller_part = part_step  # type: ignore[attr-defined]
+        module.controller_rest = rest_step  # type: ignore[attr-defined]
     if threaded:
         from etswarm.sim.parallel import no_part_step
 

@@ -37,6 +37,7 @@ _RANGES: dict[str, tuple[float | None, float | None]] = {
     "max_push_passes": (1, 10_000),
     "still_push_share": (0, 1),
     "threads": (1, 256),
+    "control_threads": (1, 256),
 }
 
 
@@ -83,6 +84,11 @@ class SimParams:
     machine's CPUs are used) with the same physics but counter-based random draws and a
     different order of resolving overlaps (see :mod:`etswarm.sim.parallel`): results
     are deterministic and the same for every value > 1, but differ from threads = 1.
+    ``control_threads``: with threads = 1, threads the controller's per-robot work runs on
+    when the controller offers its step split (``part_step`` and ``rest_step``, as the ET
+    controller does); radio, motion and collisions stay on one thread with the same random
+    draws, so results are byte-identical to ``control_threads`` 1. Each call of the loop
+    runs on this many threads or on one, whichever has lately been faster.
     """
 
     ticks_per_s: int = 31
@@ -104,6 +110,7 @@ class SimParams:
     max_push_passes: int = 4
     still_push_share: float = 0.05
     threads: int = 1
+    control_threads: int = 1
     source: str = field(default="", compare=False, repr=False)
 
     def __post_init__(self) -> None:
@@ -166,9 +173,10 @@ class SimParams:
     def to_dict(self) -> dict[str, Any]:
         """The parameters as a plain dict (for headers and final-state JSON); ``threads``
         only when it is not 1 (it changes results, but files of one-threaded runs stay
-        as they were)."""
+        as they were), ``control_threads`` never (it changes only the speed)."""
         return {f.name: getattr(self, f.name) for f in fields(self)
-                if f.name != "source" and not (f.name == "threads" and self.threads == 1)}
+                if f.name not in ("source", "control_threads")
+                and not (f.name == "threads" and self.threads == 1)}
 
     @classmethod
     def from_mapping(cls, values: dict[str, Any], source: str = "") -> SimParams:

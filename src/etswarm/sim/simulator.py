@@ -128,6 +128,16 @@ class Simulator:
             self._scratch = make_scratch(n, self._threads_used(), key)
             self._chooser = ThreadChooser(self._threads_used())
         self.fast = is_fast_controller(controller)
+        part_step = getattr(controller, "part_step", None)
+        rest_step = getattr(controller, "rest_step", None)
+        # control_threads > 1: the controller's per-robot work on threads, the rest as at
+        # threads = 1 (same results); only for a controller that offers its step split
+        self._split: tuple[np.ndarray, np.ndarray] | None = None
+        if (self.fast and self.threads == 1 and self.params.control_threads > 1
+                and part_step is not None and rest_step is not None):
+            self._split = (np.zeros(2, dtype=np.int64), np.zeros(4, dtype=np.int64))
+            most = max(1, min(self.params.control_threads, numba.config.NUMBA_NUM_THREADS))
+            self._chooser = ThreadChooser(most)
         if self.fast:
             mem = controller.mem
             if (not isinstance(mem, tuple) or not mem or not isinstance(mem[0], np.ndarray)
@@ -135,8 +145,8 @@ class Simulator:
                 raise TypeError("controller.mem must be a tuple whose element 0 is a (1,) "
                                 "int64 stop-flag array")
             self._kernel = load_kernel(controller.step, threaded=self._scratch is not None,
-                                       part_step=getattr(controller, "part_step", None),
-                                       rest_step=getattr(controller, "rest_step", None))
+                                       part_step=part_step, rest_step=rest_step,
+                                       split=self._split is not None)
             self._call_kernel(0)  # compile, or load from the disk cache, now
         elif not callable(getattr(controller, "step", None)):
             raise TypeError("controller needs a step(view) method or an njit step + mem")
@@ -169,6 +179,8 @@ class Simulator:
         w = self.world
         if self._scratch is not None:
             return self._call_threaded(n)
+        if self._split is not None:
+            return self._call_split(n)
         return int(self._kernel(
             int(n), int(w.tick), self.cfg, self.grid, w.pos, w.heading, w.motor, w.led,
             w.alive, w.present, w.speed, w.turn_rate, w.tx_phase, w.out_on, w.out_type,
@@ -198,6 +210,33 @@ class Simulator:
                     self.controller.mem, scr,
                 ))
             self._chooser.record(int(scr.parts[0]), ran, time.perf_counter() - t0)
+            done += ran
+            if done >= n or ran < step:
+                return done
+
+    def _call_split(self, n: int) -> int:
+        """Run the split loop (the controller's parts on threads, see
+        :mod:`etswarm.sim.kernel`) for ``n`` ticks in calls of about SUB_CALL_S seconds
+        each, on the thread count that is fastest now (results do not depend on it)."""
+        w = self.world
+        assert self._split is not None
+        sync, state = self._split
+        done = 0
+        while True:
+            parts = self._chooser.pick() if n > 0 else 1
+            step = min(n - done, self._chooser.call_ticks())
+            t0 = time.perf_counter()
+            with _NumbaThreads(parts):
+                ran = int(self._kernel(
+                    int(step), int(w.tick + done), self.cfg, self.grid, w.pos, w.heading,
+                    w.motor, w.led, w.alive, w.present, w.speed, w.turn_rate, w.tx_phase,
+                    w.out_on, w.out_type, w.out_data, w.in_count, w.in_type, w.in_data,
+                    w.in_dist, w.counters, self._dirty, self._dirty_flag, self._spare,
+                    self._trig, self.rng_motion, self.rng_radio, self.rng_controller,
+                    self.controller.mem, sync, state, parts,
+                ))
+            if ran > 0:
+                self._chooser.record(parts, ran, time.perf_counter() - t0)
             done += ran
             if done >= n or ran < step:
                 return done

@@ -1,0 +1,106 @@
+"""The ET controller's parts on threads in the serial loop (``SimParams.control_threads``).
+
+Only the controller's per-robot work (``et_part``) runs on several threads; radio, motion
+and collisions stay on one with the serial loop's random draws. So a run must end in the
+same world and robot memory, byte for byte, as the plain serial loop, on two threads or
+one, through a formation and through a damage with its election and the host's answers
+(the stop flag ends kernel calls early).
+"""
+
+from __future__ import annotations
+
+import hashlib
+import json
+
+import numpy as np
+import pytest
+from click.testing import CliRunner
+
+from etswarm.algorithm.run import ETRun, RunConfig
+from etswarm.algorithm.states import PLACED_STATES, State
+from etswarm.cli.main import cli, main
+from etswarm.errors import EtswarmError
+from etswarm.sim.params import SimParams
+from etswarm.sim.simulator import ThreadChooser
+
+
+def final_state(run: ETRun) -> str:
+    """Hash of the world's poses, the robots' outputs and every robot's memory."""
+    digest = hashlib.sha256()
+    ctl = run.controller
+    for arr in (run.world.pos, run.world.heading, run.world.motor, run.world.led,
+                run.world.counters, ctl.ri, ctl.nb, ctl.nb_dist, ctl.walk_seen, ctl.held):
+        digest.update(np.ascontiguousarray(arr).tobytes())
+    return digest.hexdigest()
+
+
+def advanced(config: RunConfig, seconds: float, threads: int | None) -> ETRun:
+    """``config`` run for ``seconds``: the serial loop (``threads`` None) or the split loop
+    held on ``threads`` threads."""
+    if threads is None:
+        run = ETRun(config)
+    else:
+        run = ETRun(config, sim_params=SimParams(control_threads=2))
+        run.sim._chooser = ThreadChooser(threads, adaptive=False)
+    run.advance(round(seconds * run.ticks_per_s))
+    return run
+
+
+FORMING = RunConfig(shape="T", seed=3, max_time_s=3600.0, layout="cluster")
+
+
+def test_split_formation_equals_the_serial_loop() -> None:
+    serial = advanced(FORMING, 480.0, None)
+    two = advanced(FORMING, 480.0, 2)
+    one = advanced(FORMING, 480.0, 1)
+    assert final_state(two) == final_state(serial) == final_state(one)
+    assert two.sim._chooser.ticks_on[2] == two.world.tick  # really on two threads
+    # the run did something: robots left the cluster and are searching round the seeds
+    states = two.controller.states
+    assert np.count_nonzero(states == State.SEARCH) >= 5
+    assert np.count_nonzero(np.isin(states, [int(s) for s in PLACED_STATES])) >= 3
+
+
+def test_split_regeneration_equals_the_serial_loop() -> None:
+    # a triangle formed, split in two: elections, Leaders' requests answered by the host
+    config = RunConfig(shape="triangle", seed=1, max_time_s=3 * 3600.0, damage=("split x=0",))
+    serial = advanced(config, 2700.0, None)
+    two = advanced(config, 2700.0, 2)
+    assert final_state(two) == final_state(serial)
+    assert two.events == serial.events
+    kinds = [e["kind"] for e in two.events]
+    assert "damage" in kinds and "census" in kinds, kinds
+
+
+def test_split_summary_is_the_serial_summary() -> None:
+    config = RunConfig(shape="triangle", seed=2, max_time_s=1800.0, layout="cluster")
+    summaries = []
+    for params in (SimParams(), SimParams(control_threads=2)):
+        summary = ETRun(config, sim_params=params).run()
+        summary.pop("wall_time_s")
+        summaries.append(json.dumps(summary, sort_keys=True))
+    assert summaries[0] == summaries[1]
+    assert "control_threads" not in SimParams(control_threads=2).to_dict()
+
+
+def test_control_threads_is_checked(capsys: pytest.CaptureFixture[str]) -> None:
+    with pytest.raises(EtswarmError, match="control_threads"):
+        SimParams(control_threads=0)
+    with pytest.raises(SystemExit) as stop:
+        main(["run", "triangle", "--control-threads", "0"])
+    assert stop.value.code == 2
+    err = capsys.readouterr().err
+    assert err == "etswarm: error: --control-threads must be in [1, 256], got 0\n"
+
+
+def test_cli_control_threads_gives_the_serial_json() -> None:
+    args = ["run", "triangle", "--seed", "4", "--max-time", "900", "--json"]
+    outputs = []
+    for extra in ([], ["--control-threads", "2"]):
+        result = CliRunner().invoke(cli, args + extra)
+        assert result.exit_code == 0, result.output
+        summary = json.loads(result.output)
+        summary.pop("wall_time_s")
+        outputs.append(summary)
+    assert outputs[0] == outputs[1]
+    assert outputs[0]["sim_time_s"] == 900.0
