@@ -10,7 +10,7 @@ and the number of runs that ended with a tag held by two robots.
     .venv/bin/python benchmarks/bench_et.py formation [--seeds 20] [--first-seed 0]
         [--shapes T,dumbbell,starfish] [--et NAME=VALUE ...]
         [--jobs 2] [--et NAME=VALUE ...]
-    .venv/bin/python benchmarks/bench_et.py hash [--seconds 600] [--threads 2]
+    .venv/bin/python benchmarks/bench_et.py hash [--seconds 600] [--threads 2] [--control-threads 2]
         [--shapes T,disc1000] [--hash-seeds 0,1] [--layout queue] [--damage SPEC]
 
 ``speed --shapes T,disc1000`` times only those shapes (default T, bigdisc, disc1000).
@@ -131,7 +131,7 @@ def run_hash(run: ETRun) -> str:
 
 def hashes(
     seconds: float, threads: int, shapes: list[str], seeds: list[int], layout: str,
-    damage: tuple[str, ...] = (),
+    damage: tuple[str, ...] = (), control_threads: int = 1,
 ) -> None:
     """Print the final-state hash of each (shape, seed) run of ``seconds`` simulated s."""
     tmp = Path(tempfile.mkdtemp())
@@ -140,7 +140,7 @@ def hashes(
             run = ETRun(
                 RunConfig(shape=shape_path(name, tmp), seed=seed, max_time_s=seconds,
                           layout=layout, damage=damage),
-                sim_params=SimParams(threads=threads),
+                sim_params=SimParams(threads=threads, control_threads=control_threads),
             )
             run.advance(round(seconds * 31))
             states = np.bincount(run.controller.states, minlength=8).tolist()
@@ -230,7 +230,7 @@ def main() -> None:
     parser.add_argument("--hash-seeds", default=None, help="hash: seeds, default 0,1")
     parser.add_argument("--threads", type=int, default=1, help="SimParams.threads (speed)")
     parser.add_argument("--control-threads", type=int, default=1,
-                        help="SimParams.control_threads (speed)")
+                        help="SimParams.control_threads (speed, hash)")
     parser.add_argument("--jobs", type=int, default=1, help="worker processes (formation)")
     parser.add_argument(
         "--et", type=parse_option, action="append", default=[], metavar="NAME=VALUE",
@@ -243,7 +243,7 @@ def main() -> None:
     elif args.what == "hash":
         seeds = [int(s) for s in (args.hash_seeds or "0,1").split(",")]
         hashes(args.seconds, args.threads, (args.shapes or "T,disc1000").split(","), seeds,
-               args.layout, tuple(args.damage))
+               args.layout, tuple(args.damage), args.control_threads)
     else:
         shapes = (args.shapes or "T,dumbbell,starfish").split(",")
         formation(args.seeds, shapes, args.max_time, args.jobs, dict(args.et), args.first_seed)
