@@ -91,6 +91,9 @@ def test_control_threads_is_checked(capsys: pytest.CaptureFixture[str]) -> None:
     assert stop.value.code == 2
     err = capsys.readouterr().err
     assert err == "etswarm: error: --control-threads must be in [1, 256], got 0\n"
+    with pytest.raises(SystemExit):
+        main(["run", "triangle", "--control-threads", "2", "--threads", "2"])
+    assert "--control-threads needs --threads 1" in capsys.readouterr().err
 
 
 def test_cli_control_threads_gives_the_serial_json() -> None:

@@ -100,6 +100,9 @@ def run(shape: str, robots: int | None, seed: int, loss: float, noise: float, ma
         raise EtswarmError(f"--threads must be in [1, 256], got {threads}")
     if not 1 <= control_threads <= 256:
         raise EtswarmError(f"--control-threads must be in [1, 256], got {control_threads}")
+    if control_threads > 1 and threads > 1:
+        raise EtswarmError("--control-threads needs --threads 1 (--threads above 1 already "
+                           "runs the control on every thread)")
     if video is not None and video.suffix.lower() not in (".mp4", ".gif"):
         raise EtswarmError(f"--video {video}: the file must end in .mp4 or .gif")
     et = ETParams(orbit=orbit, creep="on" if creep else "off",
