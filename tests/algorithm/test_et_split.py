@@ -9,29 +9,18 @@ one, through a formation and through a damage with its election and the host's a
 
 from __future__ import annotations
 
-import hashlib
 import json
 
-import numpy as np
 import pytest
 from click.testing import CliRunner
 
 from etswarm.algorithm.run import ETRun, RunConfig
-from etswarm.algorithm.states import PLACED_STATES, State
 from etswarm.cli.main import cli, main
 from etswarm.errors import EtswarmError
 from etswarm.sim.params import SimParams
 from etswarm.sim.simulator import ThreadChooser
 
-
-def final_state(run: ETRun) -> str:
-    """Hash of the world's poses, the robots' outputs and every robot's memory."""
-    digest = hashlib.sha256()
-    ctl = run.controller
-    for arr in (run.world.pos, run.world.heading, run.world.motor, run.world.led,
-                run.world.counters, ctl.ri, ctl.nb, ctl.nb_dist, ctl.walk_seen, ctl.held):
-        digest.update(np.ascontiguousarray(arr).tobytes())
-    return digest.hexdigest()
+from .thread_checks import assert_forming, final_state
 
 
 def advanced(config: RunConfig, seconds: float, threads: int | None) -> ETRun:
@@ -55,10 +44,7 @@ def test_split_formation_equals_the_serial_loop() -> None:
     one = advanced(FORMING, 480.0, 1)
     assert final_state(two) == final_state(serial) == final_state(one)
     assert two.sim._chooser.ticks_on[2] == two.world.tick  # really on two threads
-    # the run did something: robots left the cluster and are searching round the seeds
-    states = two.controller.states
-    assert np.count_nonzero(states == State.SEARCH) >= 5
-    assert np.count_nonzero(np.isin(states, [int(s) for s in PLACED_STATES])) >= 3
+    assert_forming(two)
 
 
 def test_split_regeneration_equals_the_serial_loop() -> None:

@@ -7,26 +7,15 @@ And ``et_step`` must be ``et_part`` over all robots (in any split) followed by `
 
 from __future__ import annotations
 
-import hashlib
-
 import numpy as np
 import pytest
 
 from etswarm.algorithm.controller import et_part, et_rest, et_step
 from etswarm.algorithm.run import ETRun, RunConfig
-from etswarm.algorithm.states import PLACED_STATES, State
 from etswarm.sim.params import SimParams
 from etswarm.sim.simulator import Simulator, ThreadChooser
 
-
-def final_state(run: ETRun) -> str:
-    """Hash of the world's poses and every robot's memory."""
-    digest = hashlib.sha256()
-    ctl = run.controller
-    for arr in (run.world.pos, run.world.heading, run.world.motor, run.world.led, ctl.ri,
-                ctl.nb, ctl.nb_dist, ctl.walk_seen, ctl.held):
-        digest.update(np.ascontiguousarray(arr).tobytes())
-    return digest.hexdigest()
+from .thread_checks import assert_forming, final_state
 
 
 def threaded_run(config: RunConfig, seconds: float, mode: str) -> ETRun:
@@ -51,10 +40,7 @@ def test_threaded_formation_is_independent_of_the_thread_count() -> None:
     assert final_state(runs["two"]) == final_state(runs["one"])
     two = runs["two"]
     assert two.sim._chooser.ticks_on[2] == two.world.tick  # really on two threads
-    # the run did something: robots left the cluster and are searching round the seeds
-    states = two.controller.states
-    assert np.count_nonzero(states == State.SEARCH) >= 5
-    assert np.count_nonzero(np.isin(states, [int(s) for s in PLACED_STATES])) >= 3
+    assert_forming(two)
 
 
 def test_threaded_regeneration_is_independent_of_the_thread_count() -> None:
