@@ -221,3 +221,12 @@ def test_thread_chooser_falls_back_to_one_thread_when_that_is_faster() -> None:
     assert chooser.current == 2
     fixed = ThreadChooser(2, adaptive=False)
     assert all(fixed.pick() == 2 for _ in range(50))
+
+
+def test_thread_chooser_does_not_time_the_first_call_on_a_count() -> None:
+    chooser = ThreadChooser(2)
+    chooser.record(2, 16, 10.0)  # the threads starting up
+    assert chooser.sec_per_tick[2] is None and chooser.ticks_on[2] == 16
+    chooser.record(2, 100, 0.1)
+    assert chooser.sec_per_tick[2] == pytest.approx(0.001)
+    assert chooser.pick() == 1  # one thread not timed yet: tried next

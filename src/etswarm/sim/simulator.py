@@ -317,8 +317,9 @@ class ThreadChooser:
     tried now and then for half a call (after 4, 8, 16 calls while it keeps losing; a
     shorter try mostly measured the threads waking up and the grid moving between the
     cores' caches) and the faster one (seconds per tick, averaged over its recent calls) is
-    used. ``adaptive=False`` always uses ``most``. ``ticks_on`` counts the ticks run on
-    each count.
+    used. The first call on each count is not timed (it starts the threads).
+    ``adaptive=False`` always uses ``most``. ``ticks_on`` counts the ticks run on each
+    count.
     """
 
     SUB_CALL_S = 0.05
@@ -333,6 +334,7 @@ class ThreadChooser:
         self.gap = 4
         self.since_try = 0
         self.trying = False
+        self.warmed: set[int] = set()
 
     def pick(self) -> int:
         """Thread count for the next call."""
@@ -354,6 +356,11 @@ class ThreadChooser:
         if ticks <= 0:
             return
         self.ticks_on[threads] = self.ticks_on.get(threads, 0) + ticks
+        if threads not in self.warmed:
+            # the first call on a count starts its threads and fills its caches: it
+            # would make the count look slower than it is for many calls
+            self.warmed.add(threads)
+            return
         per_tick = seconds / ticks
         old = self.sec_per_tick[threads]
         self.sec_per_tick[threads] = per_tick if old is None else 0.5 * (old + per_tick)
