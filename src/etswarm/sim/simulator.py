@@ -27,6 +27,7 @@ Two kinds of controller plug in:
 from __future__ import annotations
 
 import time
+from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Any
 
@@ -190,66 +191,66 @@ class Simulator:
             self.rng_controller, self.controller.mem,
         ))
 
-    def _call_threaded(self, n: int) -> int:
-        """Run the threaded loop for ``n`` ticks in calls of about SUB_CALL_S seconds each,
-        on the thread count that is fastest now (see :class:`ThreadChooser`)."""
-        w = self.world
-        scr = self._scratch
-        assert scr is not None
+    def _run_chosen(self, n: int, call: Callable[[int, int, int], int]) -> int:
+        """Run ``n`` ticks in calls of about SUB_CALL_S seconds each, on the thread count
+        that is fastest now (see :class:`ThreadChooser`): ``call(threads, ticks, done)``
+        runs one kernel call of up to ``ticks`` ticks from ``done`` ticks past the world's
+        clock and returns the ticks it ran."""
         done = 0
         while True:
-            scr.parts[0] = self._chooser.pick()
+            threads = self._chooser.pick()
             step = min(n - done, self._chooser.call_ticks())
             t0 = time.perf_counter()
-            with self._numba_threads():
-                ran = int(self._kernel(
-                    int(step), int(w.tick + done), self.cfg, self.grid, w.pos, w.heading,
-                    w.motor, w.led, w.alive, w.present, w.speed, w.turn_rate, w.tx_phase,
-                    w.out_on, w.out_type, w.out_data, w.in_count, w.in_type, w.in_data,
-                    w.in_dist, w.counters, self._dirty_flag, self._trig, self.rng_controller,
-                    self.controller.mem, scr,
-                ))
-            self._chooser.record(int(scr.parts[0]), ran, time.perf_counter() - t0)
+            with _NumbaThreads(threads):
+                ran = call(threads, step, done)
+            self._chooser.record(threads, ran, time.perf_counter() - t0)
             done += ran
             if done >= n or ran < step:
                 return done
 
+    def _call_threaded(self, n: int) -> int:
+        """Run the threaded loop for ``n`` ticks (see :meth:`_run_chosen`)."""
+        w = self.world
+        scr = self._scratch
+        assert scr is not None
+
+        def call(threads: int, ticks: int, done: int) -> int:
+            scr.parts[0] = threads
+            return int(self._kernel(
+                int(ticks), int(w.tick + done), self.cfg, self.grid, w.pos, w.heading,
+                w.motor, w.led, w.alive, w.present, w.speed, w.turn_rate, w.tx_phase,
+                w.out_on, w.out_type, w.out_data, w.in_count, w.in_type, w.in_data,
+                w.in_dist, w.counters, self._dirty_flag, self._trig, self.rng_controller,
+                self.controller.mem, scr,
+            ))
+
+        return self._run_chosen(n, call)
+
     def _call_split(self, n: int) -> int:
         """Run the split loop (the controller's parts on threads, see
-        :mod:`etswarm.sim.kernel`) for ``n`` ticks in calls of about SUB_CALL_S seconds
-        each, on the thread count that is fastest now (results do not depend on it)."""
+        :mod:`etswarm.sim.kernel`) for ``n`` ticks (see :meth:`_run_chosen`); results do
+        not depend on the thread count."""
         w = self.world
         assert self._split is not None
         sync, state = self._split
-        done = 0
-        while True:
-            parts = self._chooser.pick() if n > 0 else 1
-            step = min(n - done, self._chooser.call_ticks())
-            t0 = time.perf_counter()
-            with _NumbaThreads(parts):
-                ran = int(self._kernel(
-                    int(step), int(w.tick + done), self.cfg, self.grid, w.pos, w.heading,
-                    w.motor, w.led, w.alive, w.present, w.speed, w.turn_rate, w.tx_phase,
-                    w.out_on, w.out_type, w.out_data, w.in_count, w.in_type, w.in_data,
-                    w.in_dist, w.counters, self._dirty, self._dirty_flag, self._spare,
-                    self._trig, self.rng_motion, self.rng_radio, self.rng_controller,
-                    self.controller.mem, sync, state, parts,
-                ))
-            if ran > 0:
-                self._chooser.record(parts, ran, time.perf_counter() - t0)
-            done += ran
-            if done >= n or ran < step:
-                return done
+
+        def call(threads: int, ticks: int, done: int) -> int:
+            return int(self._kernel(
+                int(ticks), int(w.tick + done), self.cfg, self.grid, w.pos, w.heading,
+                w.motor, w.led, w.alive, w.present, w.speed, w.turn_rate, w.tx_phase,
+                w.out_on, w.out_type, w.out_data, w.in_count, w.in_type, w.in_data,
+                w.in_dist, w.counters, self._dirty, self._dirty_flag, self._spare,
+                self._trig, self.rng_motion, self.rng_radio, self.rng_controller,
+                self.controller.mem, sync, state, threads,
+            ))
+
+        return self._run_chosen(n, call)
 
     def _view(self) -> ControlView:
         w = self.world
         return ControlView(w.tick, w.alive, w.in_count, w.in_type, w.in_data, w.in_dist,
                            w.motor, w.led, w.out_on, w.out_type, w.out_data,
                            self.rng_controller)
-
-    def _numba_threads(self) -> _NumbaThreads:
-        return _NumbaThreads(int(self._scratch.parts[0]) if self._scratch is not None else 1)
-
 
     def _slow_tick(self) -> None:
         """One tick with a Python controller: the same phases as the compiled loop."""
