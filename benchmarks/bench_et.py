@@ -6,7 +6,7 @@ Formation: formed share, median formation time (simulated) and median wall time 
 and the number of runs that ended with a tag held by two robots.
 
     .venv/bin/python benchmarks/bench_et.py speed [--seconds 600] [--threads 2]
-        [--control-threads 2]
+        [--control-threads 2] [--message-delay 1]
     .venv/bin/python benchmarks/bench_et.py formation [--seeds 20] [--first-seed 0]
         [--shapes T,dumbbell,starfish] [--et NAME=VALUE ...]
         [--jobs 2] [--et NAME=VALUE ...]
@@ -21,7 +21,10 @@ With ``--threads T`` the speed runs use ``SimParams(threads=T)`` (the threaded l
 controller's per-robot work runs on every thread; "on T" is the share of ticks the thread
 chooser ran on T threads). With ``--control-threads C`` they use
 ``SimParams(control_threads=C)``: the serial loop with the controller's per-robot work on C
-threads, results identical to one thread ("on C" as above). With ``--jobs J`` the
+threads, results identical to one thread ("on C" as above). ``--message-delay 1``
+(``SimParams.message_delay_ticks``) reads every message one tick later; with
+``--control-threads`` the radio then runs beside the controller's work. It changes the
+results (the same for any thread count), so ``formation`` takes it too. With ``--jobs J`` the
 formation runs go to J worker processes (one per core: the wall times stay per run, as long
 as nothing else loads the machine).
 """
@@ -89,17 +92,16 @@ def shape_path(name: str, tmp: Path) -> str:
     return name
 
 
-def speed(seconds: float, threads: int = 1, shapes: tuple[str, ...] = SPEED_SHAPES,
-          control_threads: int = 1) -> None:
+def speed(seconds: float, sim: SimParams, shapes: tuple[str, ...] = SPEED_SHAPES) -> None:
     tmp = Path(tempfile.mkdtemp())
-    print(f"load average {os.getloadavg()}, threads {threads}, control threads {control_threads}")
+    print(f"load average {os.getloadavg()}, threads {sim.threads}, control threads "
+          f"{sim.control_threads}, message delay {sim.message_delay_ticks}")
     header = ("shape", "robots", "sim s", "wall s", "cpu s", "robot-ticks/s", "x real")
     print("{:>10} {:>7} {:>7} {:>7} {:>7} {:>14} {:>8}".format(*header))
     for name in shapes:
         shape = shape_path(name, tmp)
         run = ETRun(
-            RunConfig(shape=shape, seed=0, max_time_s=seconds, layout="cluster"),
-            sim_params=SimParams(threads=threads, control_threads=control_threads),
+            RunConfig(shape=shape, seed=0, max_time_s=seconds, layout="cluster"), sim_params=sim
         )
         run.advance(31)  # compile / load the kernel outside the timing
         t0 = time.perf_counter()
@@ -111,7 +113,7 @@ def speed(seconds: float, threads: int = 1, shapes: tuple[str, ...] = SPEED_SHAP
         ticks = run.world.tick - ticks0
         rt = run.world.n * ticks / wall
         multi = ""
-        most = max(threads, control_threads)
+        most = max(sim.threads, sim.control_threads)
         if most > 1 and hasattr(run.sim, "_chooser"):
             on = run.sim._chooser.ticks_on
             multi = f"  on {most}: {on.get(most, 0) / max(1, sum(on.values())):.2f}"
@@ -130,8 +132,8 @@ def run_hash(run: ETRun) -> str:
 
 
 def hashes(
-    seconds: float, threads: int, shapes: list[str], seeds: list[int], layout: str,
-    damage: tuple[str, ...] = (), control_threads: int = 1,
+    seconds: float, sim: SimParams, shapes: list[str], seeds: list[int], layout: str,
+    damage: tuple[str, ...] = (),
 ) -> None:
     """Print the final-state hash of each (shape, seed) run of ``seconds`` simulated s."""
     tmp = Path(tempfile.mkdtemp())
@@ -140,7 +142,7 @@ def hashes(
             run = ETRun(
                 RunConfig(shape=shape_path(name, tmp), seed=seed, max_time_s=seconds,
                           layout=layout, damage=damage),
-                sim_params=SimParams(threads=threads, control_threads=control_threads),
+                sim_params=sim,
             )
             run.advance(round(seconds * 31))
             states = np.bincount(run.controller.states, minlength=8).tolist()
@@ -153,17 +155,17 @@ def hashes(
                 more.update(np.ascontiguousarray(array).tobytes())
             more.update(repr((run.events, run.formed_at_s, run.settled_at_s,
                               sorted(run.reformed_at.items()))).encode())
-            print(f"{name:>10} seed {seed} threads {threads} layout {layout} {seconds:.0f} s: "
+            print(f"{name:>10} seed {seed} threads {sim.threads} layout {layout} {seconds:.0f} s: "
                   f"{run_hash(run)}  states {states}  events {len(run.events)}  "
                   f"memory+events {more.hexdigest()[:16]}", flush=True)
 
 
 def formation_run(
-    shape: str, seed: int, max_time_s: float, et_options: dict[str, Any]
+    shape: str, seed: int, max_time_s: float, et_options: dict[str, Any], sim: SimParams
 ) -> dict[str, Any]:
     """The summary of one formation run."""
     config = RunConfig(shape=shape, seed=seed, max_time_s=max_time_s, et=ETParams(**et_options))
-    return ETRun(config).run()
+    return ETRun(config, sim_params=sim).run()
 
 
 def parse_option(text: str) -> tuple[str, Any]:
@@ -176,17 +178,19 @@ def parse_option(text: str) -> tuple[str, Any]:
 
 def formation(
     seeds: int, shapes: list[str], max_time_s: float, jobs: int, et_options: dict[str, Any],
-    first_seed: int = 0,
+    first_seed: int = 0, sim: SimParams | None = None,
 ) -> None:
     """Formation figures over seeds ``first_seed .. first_seed + seeds - 1`` of each shape."""
     print(
         f"load average {os.getloadavg()}, {jobs} job(s), ET options {et_options or 'default'}, "
-        f"seeds {first_seed}-{first_seed + seeds - 1}"
+        f"seeds {first_seed}-{first_seed + seeds - 1}, "
+        f"message delay {(sim or SimParams()).message_delay_ticks}"
     )
     seed_range = range(first_seed, first_seed + seeds)
     with ProcessPoolExecutor(max_workers=jobs) as pool:
         futures = {
-            (shape, seed): pool.submit(formation_run, shape, seed, max_time_s, et_options)
+            (shape, seed): pool.submit(formation_run, shape, seed, max_time_s, et_options,
+                                        sim or SimParams())
             for shape in shapes
             for seed in seed_range
         }
@@ -230,23 +234,30 @@ def main() -> None:
     parser.add_argument("--hash-seeds", default=None, help="hash: seeds, default 0,1")
     parser.add_argument("--threads", type=int, default=1, help="SimParams.threads (speed)")
     parser.add_argument("--control-threads", type=int, default=1,
-                        help="SimParams.control_threads (speed, hash)")
+                        help="SimParams.control_threads (speed, hash, formation)")
+    parser.add_argument("--message-delay", type=int, default=0, choices=[0, 1],
+                        help="SimParams.message_delay_ticks (speed, hash, formation)")
     parser.add_argument("--jobs", type=int, default=1, help="worker processes (formation)")
     parser.add_argument(
         "--et", type=parse_option, action="append", default=[], metavar="NAME=VALUE",
         help="An ETParams field for every formation run, e.g. pair_aim_mm=-1 (repeatable).",
     )
     args = parser.parse_args()
+    try:
+        sim = SimParams(threads=args.threads, control_threads=args.control_threads,
+                        message_delay_ticks=args.message_delay)
+    except EtswarmError as err:
+        parser.error(str(err))
     if args.what == "speed":
-        speed(args.seconds, args.threads, tuple((args.shapes or ",".join(SPEED_SHAPES)).split(",")),
-              args.control_threads)
+        speed(args.seconds, sim, tuple((args.shapes or ",".join(SPEED_SHAPES)).split(",")))
     elif args.what == "hash":
         seeds = [int(s) for s in (args.hash_seeds or "0,1").split(",")]
-        hashes(args.seconds, args.threads, (args.shapes or "T,disc1000").split(","), seeds,
-               args.layout, tuple(args.damage), args.control_threads)
+        hashes(args.seconds, sim, (args.shapes or "T,disc1000").split(","), seeds, args.layout,
+               tuple(args.damage))
     else:
         shapes = (args.shapes or "T,dumbbell,starfish").split(",")
-        formation(args.seeds, shapes, args.max_time, args.jobs, dict(args.et), args.first_seed)
+        formation(args.seeds, shapes, args.max_time, args.jobs, dict(args.et), args.first_seed,
+                  sim)
 
 
 if __name__ == "__main__":

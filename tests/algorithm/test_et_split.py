@@ -4,7 +4,8 @@ Only the controller's per-robot work (``et_part``) runs on several threads; radi
 and collisions stay on one with the serial loop's random draws. So a run must end in the
 same world and robot memory, byte for byte, as the plain serial loop, on two threads or
 one, through a formation and through a damage with its election and the host's answers
-(the stop flag ends kernel calls early).
+(the stop flag ends kernel calls early). With a message delay of one tick the radio too
+runs beside the controller's pieces, and the same holds.
 """
 
 from __future__ import annotations
@@ -23,13 +24,13 @@ from etswarm.sim.simulator import ThreadChooser
 from .thread_checks import assert_forming, final_state
 
 
-def advanced(config: RunConfig, seconds: float, threads: int | None) -> ETRun:
+def advanced(config: RunConfig, seconds: float, threads: int | None, delay: int = 0) -> ETRun:
     """``config`` run for ``seconds``: the serial loop (``threads`` None) or the split loop
-    held on ``threads`` threads."""
+    held on ``threads`` threads, with ``delay`` ticks of message delay."""
     if threads is None:
-        run = ETRun(config)
+        run = ETRun(config, sim_params=SimParams(message_delay_ticks=delay))
     else:
-        run = ETRun(config, sim_params=SimParams(control_threads=2))
+        run = ETRun(config, sim_params=SimParams(control_threads=2, message_delay_ticks=delay))
         run.sim._chooser = ThreadChooser(threads, adaptive=False)
     run.advance(round(seconds * run.ticks_per_s))
     return run
@@ -38,10 +39,12 @@ def advanced(config: RunConfig, seconds: float, threads: int | None) -> ETRun:
 FORMING = RunConfig(shape="T", seed=3, max_time_s=3600.0, layout="cluster")
 
 
-def test_split_formation_equals_the_serial_loop() -> None:
-    serial = advanced(FORMING, 480.0, None)
-    two = advanced(FORMING, 480.0, 2)
-    one = advanced(FORMING, 480.0, 1)
+@pytest.mark.parametrize("delay", [0, 1])
+def test_split_formation_equals_the_serial_loop(delay: int) -> None:
+    # with a delay the radio runs on one thread beside the controller's pieces
+    serial = advanced(FORMING, 480.0, None, delay)
+    two = advanced(FORMING, 480.0, 2, delay)
+    one = advanced(FORMING, 480.0, 1, delay)
     assert final_state(two) == final_state(serial) == final_state(one)
     assert two.sim._chooser.ticks_on[2] == two.world.tick  # really on two threads
     assert_forming(two)

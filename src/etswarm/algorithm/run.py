@@ -497,6 +497,8 @@ class ETRun:
             "census": self.config.census,
             # threads = 1 and threads > 1 draw the motion and radio noise differently
             "threads": int(self.sim_params.threads),
+            # and a message read one tick later changes every run from there on
+            "message_delay_ticks": int(self.sim_params.message_delay_ticks),
             "damage": list(self.config.damage),
             "formed": self.formed_at_s is not None,
             "formation_time_s": self.formed_at_s,

@@ -80,13 +80,17 @@ from etswarm.algorithm.layout import LAYOUTS
 @click.option("--control-threads", type=int, default=1, show_default=True,
               help="With --threads 1: run the robots' control on this many threads and "
                    "the rest on one, with results identical to --control-threads 1.")
+@click.option("--message-delay", type=int, default=0, show_default=True,
+              help="Ticks (0 or 1) between a broadcast and the control tick that reads it "
+                   "(SimParams.message_delay_ticks). With 1, --control-threads also runs "
+                   "the radio beside the control: faster, and other results than 0.")
 def run(shape: str, robots: int | None, seed: int, loss: float, noise: float, max_time: float,
         layout: str, release_interval: float | None, census: str, orbit: str, creep: bool,
         second_ring: bool, hole_memory: bool, pocket: bool, release_order: str,
         silent_sites: bool, queue_stride: bool, et_options: tuple[str, ...], fit: bool,
         damage: tuple[str, ...],
         out: Path | None, video: Path | None, fps: float, speedup: float, snapshots: bool,
-        as_json: bool, threads: int, control_threads: int) -> None:
+        as_json: bool, threads: int, control_threads: int, message_delay: int) -> None:
     """Grow SHAPE (a library name or a bitmap file) with the ET algorithm."""
     from etswarm.algorithm.params import ETParams, parse_et_option
     from etswarm.algorithm.run import ETRun, RunConfig
@@ -103,6 +107,10 @@ def run(shape: str, robots: int | None, seed: int, loss: float, noise: float, ma
     if control_threads > 1 and threads > 1:
         raise EtswarmError("--control-threads needs --threads 1 (--threads above 1 already "
                            "runs the control on every thread)")
+    if message_delay not in (0, 1):
+        raise EtswarmError(f"--message-delay must be 0 or 1, got {message_delay}")
+    if message_delay and threads > 1:
+        raise EtswarmError("--message-delay 1 needs --threads 1 (use --control-threads)")
     if video is not None and video.suffix.lower() not in (".mp4", ".gif"):
         raise EtswarmError(f"--video {video}: the file must end in .mp4 or .gif")
     et = ETParams(orbit=orbit, creep="on" if creep else "off",
@@ -118,7 +126,8 @@ def run(shape: str, robots: int | None, seed: int, loss: float, noise: float, ma
     config = RunConfig(shape=shape, robots=robots, seed=seed, loss=loss, noise_mm=noise,
                        max_time_s=max_time, layout=layout, fit=fit, damage=damage, et=et,
                        census=census)
-    et_run = ETRun(config, sim_params=SimParams(threads=threads, control_threads=control_threads))
+    et_run = ETRun(config, sim_params=SimParams(threads=threads, control_threads=control_threads,
+                                                message_delay_ticks=message_delay))
     for note in et_run.notes:
         click.echo(f"etswarm: {note}", err=True)
     shots = None

@@ -38,6 +38,7 @@ _RANGES: dict[str, tuple[float | None, float | None]] = {
     "still_push_share": (0, 1),
     "threads": (1, 256),
     "control_threads": (1, 256),
+    "message_delay_ticks": (0, 1),
 }
 
 
@@ -57,6 +58,7 @@ class KernelConfig(NamedTuple):
     max_passes: int
     slop: float
     still_share: float
+    msg_delay: int
 
 
 @dataclass(frozen=True)
@@ -89,6 +91,13 @@ class SimParams:
     controller does); radio, motion and collisions stay on one thread with the same random
     draws, so results are byte-identical to ``control_threads`` 1. Each call of the loop
     runs on this many threads or on one, whichever has lately been faster.
+    ``message_delay_ticks``: ticks between a broadcast and the control tick that reads it.
+    0: a message sent at tick t (the sender's outgoing message after tick t - 1, its
+    distance from the positions after tick t - 1's motion) is read at tick t. 1: it is
+    read at tick t + 1, 32 ms later, as a robot's loop handles a message received
+    during its previous iteration. With 1 the split loop (``control_threads``) delivers
+    a tick's messages on one thread while the others run the controller, and the results
+    do not depend on the thread count either. Not with ``threads`` > 1.
     """
 
     ticks_per_s: int = 31
@@ -111,6 +120,7 @@ class SimParams:
     still_push_share: float = 0.05
     threads: int = 1
     control_threads: int = 1
+    message_delay_ticks: int = 0
     source: str = field(default="", compare=False, repr=False)
 
     def __post_init__(self) -> None:
@@ -131,6 +141,9 @@ class SimParams:
             if (lo is not None and value < lo) or (hi is not None and value > hi):
                 raise EtswarmError(f"{bad} {value!r} is outside [{lo}, {hi}]")
             object.__setattr__(self, f.name, int(value) if want_int else float(value))
+        if self.message_delay_ticks and self.threads > 1:
+            raise EtswarmError(f"sim parameters{where}: message_delay_ticks 1 needs threads 1 "
+                               f"(got threads {self.threads}); use control_threads")
 
     @property
     def dt(self) -> float:
@@ -158,6 +171,7 @@ class SimParams:
             max_passes=self.max_push_passes,
             slop=self.push_slop_mm,
             still_share=self.still_push_share,
+            msg_delay=self.message_delay_ticks,
         )
 
     def with_overrides(self, **overrides: Any) -> SimParams:
@@ -172,11 +186,13 @@ class SimParams:
 
     def to_dict(self) -> dict[str, Any]:
         """The parameters as a plain dict (for headers and final-state JSON); ``threads``
-        only when it is not 1 (it changes results, but files of one-threaded runs stay
-        as they were), ``control_threads`` never (it changes only the speed)."""
+        and ``message_delay_ticks`` only when they are not at their defaults (they change
+        results, but files of earlier runs stay as they were), ``control_threads`` never
+        (it changes only the speed)."""
         return {f.name: getattr(self, f.name) for f in fields(self)
                 if f.name not in ("source", "control_threads")
-                and not (f.name == "threads" and self.threads == 1)}
+                and not (f.name == "threads" and self.threads == 1)
+                and not (f.name == "message_delay_ticks" and self.message_delay_ticks == 0)}
 
     @classmethod
     def from_mapping(cls, values: dict[str, Any], source: str = "") -> SimParams:

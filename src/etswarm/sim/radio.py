@@ -130,3 +130,20 @@ def radio_phase(tick, cfg, grid, pos, alive, present, tx_phase, out_on, out_type
     counters[1] += delivered
     counters[2] += lost
     counters[3] += overflow
+
+
+@njit(cache=True)
+def snapshot_senders(tick, cfg, out_on, out_type, out_data, snap_on, snap_type, snap_data,
+                     order, first):
+    """Copy the outgoing messages of tick ``tick``'s senders (``out_on`` (N,), ``out_type``
+    (N,), ``out_data`` (N, B)) into the same rows of ``snap_*``, so that
+    :func:`radio_phase` can deliver them from the copy while the controller writes the
+    next ones (``order``, ``first``: :func:`senders_by_phase`)."""
+    slot = tick % cfg.tx_period
+    n_bytes = out_data.shape[1]
+    for q in range(first[slot], first[slot + 1]):
+        i = order[q]
+        snap_on[i] = out_on[i]
+        snap_type[i] = out_type[i]
+        for c in range(n_bytes):
+            snap_data[i, c] = out_data[i, c]

@@ -128,6 +128,15 @@ class Simulator:
             key = int(stream(self.seed, "threads").integers(0, 2**63, dtype=np.int64))
             self._scratch = make_scratch(n, self._threads_used(), key)
             self._chooser = ThreadChooser(self._threads_used())
+        # message_delay_ticks 1: the inbox the radio fills for the next tick, swapped with
+        # the world's after every tick (after a kernel call that ran an odd number), and
+        # the split loop's copy of a tick's senders' messages
+        self._next_inbox: list[np.ndarray] = [w_in for w_in in self._inbox()]
+        self._sent_copy = (world.out_on, world.out_type, world.out_data)
+        if self.params.message_delay_ticks:
+            self._next_inbox = [np.zeros_like(a) for a in self._inbox()]
+            self._sent_copy = (np.zeros_like(world.out_on), np.zeros_like(world.out_type),
+                               np.zeros_like(world.out_data))
         self.fast = is_fast_controller(controller)
         part_step = getattr(controller, "part_step", None)
         rest_step = getattr(controller, "rest_step", None)
@@ -171,6 +180,21 @@ class Simulator:
                 return k + 1
         return n
 
+    def _inbox(self) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+        """The world's inbox arrays: what the controller reads at the next tick."""
+        w = self.world
+        return w.in_count, w.in_type, w.in_data, w.in_dist
+
+    def _after_ticks(self, ran: int) -> int:
+        """With a message delay, after ``ran`` ticks the inbox of the next tick is the one
+        the kernel filled last: the spare when ``ran`` is odd. Swap it into the world."""
+        if self.params.message_delay_ticks and ran % 2 == 1:
+            w = self.world
+            nxt = self._next_inbox
+            (w.in_count, nxt[0]), (w.in_type, nxt[1]) = (nxt[0], w.in_count), (nxt[1], w.in_type)
+            (w.in_data, nxt[2]), (w.in_dist, nxt[3]) = (nxt[2], w.in_data), (nxt[3], w.in_dist)
+        return ran
+
     def _threads_used(self) -> int:
         """Threads actually started: ``params.threads``, at most numba's thread count."""
         return max(1, min(self.threads, numba.config.NUMBA_NUM_THREADS))
@@ -182,14 +206,13 @@ class Simulator:
             return self._call_threaded(n)
         if self._split is not None:
             return self._call_split(n)
-        return int(self._kernel(
+        return self._after_ticks(int(self._kernel(
             int(n), int(w.tick), self.cfg, self.grid, w.pos, w.heading, w.motor, w.led,
             w.alive, w.present, w.speed, w.turn_rate, w.tx_phase, w.out_on, w.out_type,
             w.out_data, w.in_count, w.in_type, w.in_data, w.in_dist, w.counters,
             self._dirty, self._dirty_flag, self._spare, self._trig, self.rng_motion,
-            self.rng_radio,
-            self.rng_controller, self.controller.mem,
-        ))
+            self.rng_radio, self.rng_controller, self.controller.mem, tuple(self._next_inbox),
+        )))
 
     def _run_chosen(self, n: int, call: Callable[[int, int, int], int]) -> int:
         """Run ``n`` ticks in calls of about SUB_CALL_S seconds each, on the thread count
@@ -235,14 +258,15 @@ class Simulator:
         sync, state = self._split
 
         def call(threads: int, ticks: int, done: int) -> int:
-            return int(self._kernel(
+            return self._after_ticks(int(self._kernel(
                 int(ticks), int(w.tick + done), self.cfg, self.grid, w.pos, w.heading,
                 w.motor, w.led, w.alive, w.present, w.speed, w.turn_rate, w.tx_phase,
                 w.out_on, w.out_type, w.out_data, w.in_count, w.in_type, w.in_data,
                 w.in_dist, w.counters, self._dirty, self._dirty_flag, self._spare,
                 self._trig, self.rng_motion, self.rng_radio, self.rng_controller,
-                self.controller.mem, sync, state, threads,
-            ))
+                self.controller.mem, sync, state, threads, tuple(self._next_inbox),
+                self._sent_copy,
+            )))
 
         return self._run_chosen(n, call)
 
@@ -276,15 +300,16 @@ class Simulator:
             return
         n_dirty = grid_sync(g, w.pos, w.present, self._dirty, self._dirty_flag, g.state[2])
         order, first = senders_by_phase(w.tx_phase, self.cfg.tx_period)
+        filled = self._next_inbox if self.params.message_delay_ticks else self._inbox()
         radio_phase(w.tick, self.cfg, g, w.pos, w.alive, w.present, w.tx_phase, w.out_on,
-                    w.out_type, w.out_data, w.in_count, w.in_type, w.in_data, w.in_dist,
-                    w.counters, self.rng_radio, order, first)
+                    w.out_type, w.out_data, *filled, w.counters, self.rng_radio, order, first)
         self.controller.step(self._view())
         n_dirty = move_phase(self.cfg, g, w.pos, w.heading, w.motor, w.alive, w.present,
                              w.speed, w.turn_rate, self._dirty, self._dirty_flag, n_dirty,
                              self._trig, self.rng_motion)
         collide_phase(self.cfg, g, w.pos, w.present, w.motor, self._dirty, self._dirty_flag,
                       n_dirty, self._spare, w.counters)
+        self._after_ticks(1)
         w.tick += 1
 
     def run_seconds(self, seconds: float) -> int:
