@@ -50,11 +50,12 @@ def test_split_formation_equals_the_serial_loop(delay: int) -> None:
     assert_forming(two)
 
 
-def test_split_regeneration_equals_the_serial_loop() -> None:
+@pytest.mark.parametrize("delay", [0, 1])
+def test_split_regeneration_equals_the_serial_loop(delay: int) -> None:
     # a triangle formed, split in two: elections, Leaders' requests answered by the host
     config = RunConfig(shape="triangle", seed=1, max_time_s=3 * 3600.0, damage=("split x=0",))
-    serial = advanced(config, 2700.0, None)
-    two = advanced(config, 2700.0, 2)
+    serial = advanced(config, 2700.0, None, delay)
+    two = advanced(config, 2700.0, 2, delay)
     assert final_state(two) == final_state(serial)
     assert two.events == serial.events
     kinds = [e["kind"] for e in two.events]

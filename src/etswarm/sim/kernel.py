@@ -32,7 +32,11 @@ loop's phases and random draws, but the controller's ``part_step`` runs on every
 each taking pieces of ``CHUNK`` robots from a shared counter until none is left. The last
 thread to finish its pieces runs ``rest_step``, motion, collisions and the next tick's
 radio while the others wait at the barrier. Parts touch only their own robots' rows, so
-the results are the serial loop's, byte for byte, on any number of threads.
+the results are the serial loop's, byte for byte, on any number of threads. With
+``SimParams.message_delay_ticks`` = 1 the radio fills the inbox of the next tick (both
+loops alternate two inboxes): in the split loop it is then job 0 of the tick's parallel
+phase, run by the first thread there from a copy of the senders' messages, beside the
+controller's pieces.
 
 The directory is ``$ETSWARM_KERNEL_DIR`` if set, else ``~/.cache/etswarm/kernels``
 (or a temporary directory when that is not writable).
