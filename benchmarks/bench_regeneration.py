@@ -36,6 +36,7 @@ from typing import Any
 from etswarm.algorithm.params import ETParams, parse_et_option
 from etswarm.algorithm.run import ETRun, RunConfig
 from etswarm.errors import EtswarmError
+from etswarm.sim.params import SimParams
 
 CASES = (
     ("triangle", "split x=0"),
@@ -61,9 +62,9 @@ ISSUE5_CASES = (
 SUITES = {"default": CASES, "issue5": ISSUE5_CASES}
 
 
-def one_run(args: tuple[str, str, str, int, float, dict[str, str]]) -> dict[str, Any]:
+def one_run(args: tuple[str, str, str, int, float, dict[str, str], int]) -> dict[str, Any]:
     """Run one case with one seed and census method; return its JSON summary."""
-    shape, damage, census, seed, max_time, et_options = args
+    shape, damage, census, seed, max_time, et_options, delay = args
     name, _, robots = shape.partition("/")
     config = RunConfig(
         shape=name,
@@ -75,7 +76,7 @@ def one_run(args: tuple[str, str, str, int, float, dict[str, str]]) -> dict[str,
         census=census,
         et=ETParams(**et_options),
     )
-    return ETRun(config).run()
+    return ETRun(config, sim_params=SimParams(message_delay_ticks=delay)).run()
 
 
 HEADER = (
@@ -199,18 +200,21 @@ def main() -> None:
         "--et", type=parse_option, action="append", default=[], metavar="NAME=VALUE",
         help="An ETParams option for every run, e.g. release_order=id (repeatable).",
     )
+    parser.add_argument("--message-delay", type=int, choices=(0, 1), default=0,
+                        help="SimParams.message_delay_ticks of every run.")
     args = parser.parse_args()
     et_options = dict(args.et)
     methods = ("tree", "walk") if args.census == "both" else (args.census,)
     cases = args.case or list(SUITES[args.suite])
-    print(f"load average {os.getloadavg()}")
+    print(f"load average {os.getloadavg()}, message delay {args.message_delay}")
     print(HEADER)
     seeds = range(args.first_seed, args.first_seed + args.seeds)
     limit = args.max_time + (args.regrow_time or 0.0)  # simulated s per run
     with ProcessPoolExecutor(max_workers=args.jobs) as pool:
         for shape, damage in cases:
             for census in methods:
-                work = [(shape, damage, census, seed, limit, et_options) for seed in seeds]
+                work = [(shape, damage, census, seed, limit, et_options, args.message_delay)
+                        for seed in seeds]
                 runs = list(pool.map(one_run, work))
                 if args.out:
                     for run in runs:

@@ -86,8 +86,9 @@ def test_control_threads_is_checked(capsys: pytest.CaptureFixture[str]) -> None:
     assert "--control-threads needs --threads 1" in capsys.readouterr().err
 
 
-def test_cli_control_threads_gives_the_serial_json() -> None:
-    args = ["run", "triangle", "--seed", "4", "--max-time", "900", "--json"]
+@pytest.mark.parametrize("delay", [[], ["--message-delay", "1"]])
+def test_cli_control_threads_gives_the_serial_json(delay: list[str]) -> None:
+    args = ["run", "triangle", "--seed", "4", "--max-time", "900", "--json", *delay]
     outputs = []
     for extra in ([], ["--control-threads", "2"]):
         result = CliRunner().invoke(cli, args + extra)
@@ -97,3 +98,4 @@ def test_cli_control_threads_gives_the_serial_json() -> None:
         outputs.append(summary)
     assert outputs[0] == outputs[1]
     assert outputs[0]["sim_time_s"] == 900.0
+    assert outputs[0]["message_delay_ticks"] == (1 if delay else 0)
