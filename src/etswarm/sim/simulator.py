@@ -2,7 +2,9 @@
 
 Each tick runs fixed phases: (1) radio: clear inboxes, deliver this tick's broadcasts;
 (2) control: the controller reads inboxes and writes motor, led, out_*; (3) move;
-(4) collide; (5) ``world.tick += 1``.
+(4) collide; (5) ``world.tick += 1``. With ``SimParams.message_delay_ticks`` = 1 the
+radio fills the inbox the controller reads at the next tick (two inboxes alternate), so
+a broadcast is read one tick later.
 
 Two kinds of controller plug in:
 
