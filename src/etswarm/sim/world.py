@@ -47,7 +47,8 @@ class World:
         tx_phase: (N,) int64 in [0, tx_period): robot i broadcasts on ticks with
             ``tick % tx_period == tx_phase[i]`` while ``out_on[i]``.
         out_on: (N,) bool, robot broadcasts.  out_type: (N,) uint8.  out_data: (N, 9) uint8.
-        in_count: (N,) int32 messages in the inbox this tick (<= K).
+        in_count: (N,) int32 messages in the inbox this tick (<= K); with a message delay
+            (``SimParams.message_delay_ticks``), between ticks: the next tick's inbox.
         in_type: (N, K) uint8.  in_data: (N, K, 9) uint8.
         in_dist: (N, K) float32 mm, measured centre distance of each message's sender.
         counters: (7,) int64 running totals, named by :data:`COUNTER_NAMES`.
