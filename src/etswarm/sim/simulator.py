@@ -133,7 +133,7 @@ class Simulator:
         # message_delay_ticks 1: the inbox the radio fills for the next tick, swapped with
         # the world's after every tick (after a kernel call that ran an odd number), and
         # the split loop's copy of a tick's senders' messages
-        self._next_inbox: list[np.ndarray] = [w_in for w_in in self._inbox()]
+        self._next_inbox: list[np.ndarray] = list(self._inbox())
         self._sent_copy = (world.out_on, world.out_type, world.out_data)
         if self.params.message_delay_ticks:
             self._next_inbox = [np.zeros_like(a) for a in self._inbox()]
@@ -191,10 +191,10 @@ class Simulator:
         """With a message delay, after ``ran`` ticks the inbox of the next tick is the one
         the kernel filled last: the spare when ``ran`` is odd. Swap it into the world."""
         if self.params.message_delay_ticks and ran % 2 == 1:
-            w = self.world
-            nxt = self._next_inbox
-            (w.in_count, nxt[0]), (w.in_type, nxt[1]) = (nxt[0], w.in_count), (nxt[1], w.in_type)
-            (w.in_data, nxt[2]), (w.in_dist, nxt[3]) = (nxt[2], w.in_data), (nxt[3], w.in_dist)
+            for k, name in enumerate(_INBOX_NAMES):
+                held = getattr(self.world, name)
+                setattr(self.world, name, self._next_inbox[k])
+                self._next_inbox[k] = held
         return ran
 
     def _threads_used(self) -> int:
@@ -318,6 +318,9 @@ class Simulator:
         """Run ``seconds`` of simulated time (rounded to whole ticks); return ticks run."""
         return self.run_ticks(round(seconds * self.params.ticks_per_s))
 
+
+#: The world's inbox arrays, in the order the kernels take them.
+_INBOX_NAMES = ("in_count", "in_type", "in_data", "in_dist")
 
 class _NumbaThreads:
     """Context: numba runs parallel loops on ``count`` threads, restored on exit."""
