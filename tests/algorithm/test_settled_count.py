@@ -50,10 +50,13 @@ def test_a_large_remnant_elects_and_counts_exactly() -> None:
     """bigdisc seed 0: a searcher's push drops a stretched link at 11540 s and all 367
     robots elect. The root's count swung between 290 and 431 and the election never ended
     before the settled count (2.8 h in Danger)."""
-    # (as traced, without held-site gossip)
+    # (as traced, without held-site gossip, and regrowing after the election: it loses
+    # nobody, so with ``false_alarm = "resume"`` the robots take up their work again and
+    # the stretched lattice starts another election later)
     run = ETRun(RunConfig(shape="bigdisc", seed=0, max_time_s=3.5 * 3600,
                           et=ETParams(held_gossip_every=0, site_offsets="off",
-                                       lost_homing="off", **SESSION_19_WIDENING)))
+                                       lost_homing="off", false_alarm="regrow",
+                                       **SESSION_19_WIDENING)))
     summary = run.run()
     kinds = [e["kind"] for e in summary["events"]]
     assert "detected" in kinds

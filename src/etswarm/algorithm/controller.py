@@ -626,7 +626,7 @@ def et_part(  # type: ignore[no-untyped-def]
             idle[i] = wake
         elif INACTIVE <= state <= STABLE:
             motor[i] = STOP
-            placed_rule(i, tick, ri, nb, nb_dist, ci, cf)
+            placed_rule(i, tick, ri, nb, nb_dist, gene_flag[slot], ci, cf)
             # (a no-op once placed_rule has started an election: it acts in the normal phase)
             contact_rule(i, tick, ri, nb, nb_dist, gene_flag[slot], ci)
             if (

@@ -35,13 +35,14 @@ from etswarm.algorithm.memory import (
     R_TSLOT,
     R_WALK,
     SLOT_FIELDS,
+    SLOT_SHAPE,
     SLOT_WX,
     SLOT_WY,
     allocate,
 )
 from etswarm.algorithm.params import NOMINAL_MOTION, ETParams
 from etswarm.algorithm.states import State
-from etswarm.shapes.lattice import neighbour_counts
+from etswarm.shapes.lattice import neighbour_counts, sort_cells
 
 #: Target slots allocated at first (more are added when regenerations need them).
 INITIAL_SLOTS = 8
@@ -134,7 +135,12 @@ class ETController:
             gy = cells[:, 1] - self.y0
             self.gene_flag[slot, gx, gy] = 1
             self.gene_nn[slot, gx, gy] = neighbour_counts(cells)
-        self.slot_info[slot] = (len(cells), release_limit, tx, ty, 1, *window)
+        self.slot_info[slot] = (len(cells), release_limit, tx, ty, 1, *window, slot)
+        key = sort_cells(cells)
+        for other, other_cells in enumerate(self.slot_cells):
+            if np.array_equal(sort_cells(other_cells), key):
+                self.slot_info[slot, SLOT_SHAPE] = self.slot_info[other, SLOT_SHAPE]
+                break
         self.slot_cells.append(cells)
         return slot
 

@@ -185,7 +185,19 @@ R_PINCH_REFUSED = R_SEEN_FULL + 1
 #: Tick + 1 since which a placed robot has heard another remnant's robot beside it
 #: without a break (0: not now; ``merge``).
 R_CONTACT_SINCE = R_PINCH_REFUSED + 1
-R_FIELDS = R_CONTACT_SINCE + 1
+#: What a robot was before it joined an election (its state, and R_SINCE then), to go
+#: back to when the election was a false alarm (``regeneration.resume``).
+R_PRE_STATE = R_CONTACT_SINCE + 1
+R_PRE_SINCE = R_PRE_STATE + 1
+#: Neighbour sites of the gene (bits as ``R_MASK``) that a Stable robot starting an
+#: election did not know held; after a false alarm they are excused: they count as held
+#: until the robot next adopts a new target.
+R_MISSING = R_PRE_SINCE + 1
+R_EXCUSED = R_MISSING + 1
+#: Tick + 1 at which the robot resumed after a false alarm (0: it has not since it last
+#: adopted a target); for a quiet time after it, it starts no election.
+R_RESUMED_AT = R_EXCUSED + 1
+R_FIELDS = R_RESUMED_AT + 1
 
 PHASE_NORMAL = 0
 PHASE_ELECTING = 1
@@ -225,7 +237,8 @@ SLOT_TY = 3
 SLOT_USED = 4  # 1 when the slot holds a target
 SLOT_WX = 5  # origin of the searchers' memory window (see ``site_memory``): least tag - 1
 SLOT_WY = 6
-SLOT_FIELDS = 7
+SLOT_SHAPE = 7  # the first slot holding the same cells (the same target, wherever found)
+SLOT_FIELDS = 8
 
 #: Neighbour-table slots per robot (a lattice site has 6 neighbours and 6 at ~1.73 d).
 NB_SLOTS = 16

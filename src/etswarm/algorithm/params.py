@@ -57,7 +57,8 @@ C_REGROW_PINCH_REFUSALS = 40  # the same while it searches for a regenerated tar
 C_REGROW_OFFSETS = 41  # REGROW_OFFSETS_*: what a robot kept on its site does with its offset
 C_AVOID_FOREIGN = 42  # 1: searchers ignore placed robots off their target (obstacles only)
 C_MERGE = 43  # 1: placed robots touching another remnant's shape start a joint election
-N_CI = 44
+C_FALSE_ALARM = 44  # 1: an election whose census keeps the current target is a false alarm
+N_CI = 45
 
 F_SPACING = 0  # lattice spacing d
 F_PAIR_TOL = 1  # two references within this of d trigger a site candidate
@@ -105,6 +106,19 @@ PLACEMENTS = ("extent", "local")
 FOREIGN_MODES = ("avoid", "follow")
 #: Which seed triangle a Leader's placement may use (``ETParams.placement_seeds``).
 PLACEMENT_SEEDS = ("leader", "any", "silent")
+#: What an election whose census keeps the current target does (``ETParams.false_alarm``).
+FALSE_ALARM_MODES = ("resume", "regrow")
+#: The allowed values of each ETParams field that takes one of a few names.
+CHOICES: dict[str, tuple[str, ...]] = {
+    "census": CENSUS_METHODS,
+    "regrowth_offsets": REGROWTH_OFFSETS,
+    "placement": PLACEMENTS,
+    "placement_seeds": PLACEMENT_SEEDS,
+    "foreign_robots": FOREIGN_MODES,
+    "release_order": ("far", "id"),
+    "orbit": ORBIT_MODES,
+    "false_alarm": FALSE_ALARM_MODES,
+}
 
 
 #: Parameters that may be zero (all others must be positive).
@@ -377,13 +391,22 @@ class ETParams:
     #: contact with its own) starts an election; both remnants' robots join it and elect
     #: as one (``merge``). "off": remnants that meet stay apart.
     merge_remnants: str = "on"
+    #: "resume": a Leader whose census gives the robot count of its remnant's current
+    #: target keeps that target where it is, and every robot goes back to the state it
+    #: had before the election (a false alarm: nothing was lost); a robot that started
+    #: the election no longer counts the neighbour sites it missed then
+    #: (``regeneration.resume``). "regrow": every election regrows the shape from its
+    #: seeds (the paper).
+    false_alarm: str = "resume"
 
     def __post_init__(self) -> None:
         for f in fields(self):
             value = getattr(self, f.name)
-            if f.name == "census":
-                if value not in CENSUS_METHODS:
-                    raise EtswarmError(f"census must be one of {CENSUS_METHODS}, got {value!r}")
+            if f.name in CHOICES:
+                if value not in CHOICES[f.name]:
+                    raise EtswarmError(
+                        f"{f.name} must be one of {CHOICES[f.name]}, got {value!r}"
+                    )
             elif f.name in (
                 "creep", "second_ring", "hole_memory", "fill_lookahead", "pocket", "queue_stride",
                 "silent_sites", "lost_beacon", "lost_yield", "site_offsets", "lost_homing",
@@ -391,30 +414,6 @@ class ETParams:
             ):
                 if value not in ("on", "off"):
                     raise EtswarmError(f"{f.name} must be 'on' or 'off', got {value!r}")
-            elif f.name == "regrowth_offsets":
-                if value not in REGROWTH_OFFSETS:
-                    raise EtswarmError(
-                        f"regrowth_offsets must be one of {REGROWTH_OFFSETS}, got {value!r}"
-                    )
-            elif f.name == "placement":
-                if value not in PLACEMENTS:
-                    raise EtswarmError(f"placement must be one of {PLACEMENTS}, got {value!r}")
-            elif f.name == "placement_seeds":
-                if value not in PLACEMENT_SEEDS:
-                    raise EtswarmError(
-                        f"placement_seeds must be one of {PLACEMENT_SEEDS}, got {value!r}"
-                    )
-            elif f.name == "foreign_robots":
-                if value not in FOREIGN_MODES:
-                    raise EtswarmError(
-                        f"foreign_robots must be one of {FOREIGN_MODES}, got {value!r}"
-                    )
-            elif f.name == "release_order":
-                if value not in ("far", "id"):
-                    raise EtswarmError(f"release_order must be 'far' or 'id', got {value!r}")
-            elif f.name == "orbit":
-                if value not in ORBIT_MODES:
-                    raise EtswarmError(f"orbit must be one of {ORBIT_MODES}, got {value!r}")
             elif f.name == "offset_trust":
                 if not 0 <= value <= 1:
                     raise EtswarmError(f"ET parameter offset_trust must be in [0, 1], got {value}")
@@ -489,6 +488,7 @@ class ETParams:
         ci[C_RELEASE_FAR] = 1 if self.release_order == "far" else 0
         ci[C_AVOID_FOREIGN] = 1 if self.foreign_robots == "avoid" else 0
         ci[C_MERGE] = 1 if self.merge_remnants == "on" else 0
+        ci[C_FALSE_ALARM] = 1 if self.false_alarm == "resume" else 0
         ci[C_SETTLE_RETRIES] = self.settle_retries
         ci[C_REGROW_RETRIES] = self.regrowth_settle_retries
         ci[C_TICKS_HOVER] = round(self.regrowth_hover_s * ticks_per_s)

@@ -12,6 +12,7 @@ from etswarm.algorithm.kernel_util import (
     QUASI,
     STABLE,
     direction_index,
+    gene_at,
     is_placed,
     set_state,
 )
@@ -28,10 +29,13 @@ from etswarm.algorithm.memory import (
     R_BELOW_SINCE,
     R_COUNT,
     R_EPOCH,
+    R_EXCUSED,
     R_MASK,
+    R_MISSING,
     R_NN,
     R_OFF_REFINE,
     R_QUASI_UNTIL,
+    R_RESUMED_AT,
     R_SEEN_FULL,
     R_SINCE,
     R_STATE,
@@ -45,6 +49,7 @@ from etswarm.algorithm.params import (
     C_TICKS_DANGER,
     C_TICKS_NB_FRESH,
     C_TICKS_QUASI,
+    C_TICKS_REGEN_QUIET,
     F_SPACING,
 )
 from etswarm.algorithm.regeneration import start_election
@@ -63,6 +68,16 @@ def bit_count(bits):  # type: ignore[no-untyped-def]
     for k in range(6):
         count += (bits >> k) & 1
     return count
+
+
+@njit
+def gene_dirs(x, y, gene, ci):  # type: ignore[no-untyped-def]
+    """Bits k of the neighbour sites of (x, y) that are sites of the gene ``gene``."""
+    bits = 0
+    for k in range(6):
+        if gene_at(gene, ci, x + DIR_X[k], y + DIR_Y[k]) == 1:
+            bits |= 1 << k
+    return bits
 
 
 @njit
@@ -92,8 +107,9 @@ def reported_dirs(i, tick, ri, nb, fresh, seen_dirs):  # type: ignore[no-untyped
 
 
 @njit
-def placed_rule(i, tick, ri, nb, nb_dist, ci, cf):  # type: ignore[no-untyped-def]
-    """Inactive -> Active -> Quasi/Stable, and Stable -> Danger (paper Table 1)."""
+def placed_rule(i, tick, ri, nb, nb_dist, gene, ci, cf):  # type: ignore[no-untyped-def]
+    """Inactive -> Active -> Quasi/Stable, and Stable -> Danger (paper Table 1); ``gene``
+    holds the gene flags of the robot's target (GX, GY)."""
     fresh = ci[C_TICKS_NB_FRESH]
     x = ri[i, R_TAG_X]
     y = ri[i, R_TAG_Y]
@@ -127,12 +143,14 @@ def placed_rule(i, tick, ri, nb, nb_dist, ci, cf):  # type: ignore[no-untyped-de
     # holder reports it (a holder placed a little too far to be heard is still there).
     # Only direct observations are passed on (R_MASK), so no report outlives its source.
     # (Held sites are gene sites, so with all NN heard there is nothing left to report.)
+    # Sites excused after a false alarm count too (``regeneration.resume``).
     nn = ri[i, R_NN]
-    count = bit_count(seen_dirs)
+    excused = ri[i, R_EXCUSED]
+    count = bit_count(seen_dirs | excused)
     known_dirs = seen_dirs
     if count < nn:
         known_dirs = seen_dirs | reported_dirs(i, tick, ri, nb, fresh, seen_dirs)
-        count = bit_count(known_dirs)
+        count = bit_count(known_dirs | excused)
     ri[i, R_COUNT] = count
     ri[i, R_MASK] = seen_dirs
     if state == STABLE:
@@ -158,8 +176,11 @@ def placed_rule(i, tick, ri, nb, nb_dist, ci, cf):  # type: ignore[no-untyped-de
         if tick >= ri[i, R_QUASI_UNTIL]:
             set_state(i, ri, ACTIVE, tick)
     elif state == STABLE:
-        if count >= nn:
-            ri[i, R_SEEN_FULL] = seen_dirs
+        resumed = ri[i, R_RESUMED_AT]
+        if count >= nn or (resumed > 0 and tick - (resumed - 1) < ci[C_TICKS_REGEN_QUIET]):
+            # (just back from a false alarm, its neighbours may not all have caught up)
+            if count >= nn:
+                ri[i, R_SEEN_FULL] = seen_dirs
             ri[i, R_BELOW_SINCE] = -1
         elif ri[i, R_BELOW_SINCE] < 0:
             ri[i, R_BELOW_SINCE] = tick
@@ -173,3 +194,4 @@ def placed_rule(i, tick, ri, nb, nb_dist, ci, cf):  # type: ignore[no-untyped-de
                 patience *= REPORTED_PATIENCE
             if tick - ri[i, R_BELOW_SINCE] >= patience:
                 start_election(i, tick, ri, ci)
+                ri[i, R_MISSING] = gene_dirs(x, y, gene, ci) & ~(known_dirs | excused)

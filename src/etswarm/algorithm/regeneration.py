@@ -34,6 +34,7 @@ from etswarm.algorithm.kernel_util import (
     LEADER,
     QUEUED,
     SEARCH,
+    STABLE,
     direction_index,
     gene_at,
     is_placed,
@@ -64,13 +65,16 @@ from etswarm.algorithm.memory import (
     R_COUNT_SINCE,
     R_ELECT_SINCE,
     R_EPOCH,
+    R_EXCUSED,
     R_EXT_GREW,
     R_FLOOR,
     R_FLOOR_SINCE,
     R_HAS_TAG,
+    R_HELD_EPOCH,
     R_HOP,
     R_LEADER,
     R_MASK,
+    R_MISSING,
     R_NEWSLOT,
     R_NN,
     R_OFF_REFINE,
@@ -83,15 +87,19 @@ from etswarm.algorithm.memory import (
     R_PEND_TX,
     R_PEND_TY,
     R_PHASE,
+    R_PRE_SINCE,
+    R_PRE_STATE,
     R_QMIN,
     R_QMIN_SINCE,
     R_RELEASED,
     R_REQUEST,
+    R_RESUMED_AT,
     R_SEEN_FULL,
     R_SETTLED_COUNT,
     R_SETTLED_SINCE,
     R_SHAPE_HOPS,
     R_SILENT_N,
+    R_SINCE,
     R_STATE,
     R_SUBCOUNT,
     R_TAG_X,
@@ -102,12 +110,14 @@ from etswarm.algorithm.memory import (
     R_WALK_END,
     R_WALK_RESULT,
     SLOT_N,
+    SLOT_SHAPE,
     SLOT_TX,
     SLOT_TY,
     SLOT_USED,
 )
 from etswarm.algorithm.params import (
     C_CENSUS_WALK,
+    C_FALSE_ALARM,
     C_OFFSETS,
     C_REGROW_OFFSETS,
     C_TICKS_NB_FRESH,
@@ -139,6 +149,9 @@ LONG_ELECTION_SHARE = 4
 @njit
 def start_election(i, tick, ri, ci):  # type: ignore[no-untyped-def]
     """Robot i joins the election for epoch R_EPOCH + 1 as a candidate of its own."""
+    ri[i, R_PRE_STATE] = ri[i, R_STATE]
+    ri[i, R_PRE_SINCE] = ri[i, R_SINCE]
+    ri[i, R_MISSING] = 0  # (placed_rule notes what a Stable robot missed)
     ri[i, R_PHASE] = PHASE_ELECTING
     ri[i, R_LEADER] = i
     ri[i, R_HOP] = 0
@@ -298,9 +311,13 @@ def restart_offset(i, tick, seed, ri, ci):  # type: ignore[no-untyped-def]
 def adopt_target(i, tick, ri, nb, slot, epoch, leader, gene_flag, gene_nn, slot_info, ci):  # type: ignore[no-untyped-def]
     """Robot i takes target ``slot`` of ``epoch``: stays on its site if the new shape has
     it (the Leader as the Active seed), else goes back to Queued. Its neighbour table is
-    cleared: what it knew describes the old target."""
-    for m in range(nb.shape[1]):
-        nb[i, m, NB_ID] = -1
+    cleared: what it knew describes the old target. When the new target is the one it
+    had (a false alarm, ``ETParams.false_alarm`` "resume"), it goes back to what it was
+    instead (``resume``)."""
+    same = slot_info[slot, SLOT_SHAPE] == slot_info[ri[i, R_TSLOT], SLOT_SHAPE]
+    electing = ri[i, R_PHASE] == PHASE_ELECTING
+    before = ri[i, R_PRE_STATE] if electing else ri[i, R_STATE]
+    old_epoch = ri[i, R_EPOCH]
     ri[i, R_EPOCH] = epoch
     ri[i, R_TSLOT] = slot
     ri[i, R_PHASE] = PHASE_NORMAL
@@ -313,10 +330,18 @@ def adopt_target(i, tick, ri, nb, slot, epoch, leader, gene_flag, gene_nn, slot_
     ri[i, R_PEND_TY] = slot_info[slot, SLOT_TY]
     ri[i, R_LEADER] = leader
     ri[i, R_BELOW_SINCE] = -1
+    ri[i, R_SILENT_N] = 0  # the silent sites were for this election
+    if same and ci[C_FALSE_ALARM] == 1 and resumable(i, ri, before):
+        resume(i, tick, ri, before, electing, old_epoch)
+        return
+    for m in range(nb.shape[1]):
+        nb[i, m, NB_ID] = -1
     ri[i, R_COUNT] = 0
     ri[i, R_MASK] = 0  # what it observed was of the old target (see ``search.search_rule``)
     ri[i, R_SEEN_FULL] = 0
-    ri[i, R_SILENT_N] = 0  # the silent sites were for this election
+    ri[i, R_MISSING] = 0
+    ri[i, R_EXCUSED] = 0
+    ri[i, R_RESUMED_AT] = 0
     x = ri[i, R_TAG_X]
     y = ri[i, R_TAG_Y]
     if ri[i, R_HAS_TAG] == 1 and gene_at(gene_flag[slot], ci, x, y) == 1:
@@ -337,6 +362,36 @@ def adopt_target(i, tick, ri, nb, slot, epoch, leader, gene_flag, gene_nn, slot_
         ri[i, R_QMIN] = i
         ri[i, R_QMIN_SINCE] = tick
         ri[i, R_SHAPE_HOPS] = HOPS_NONE
+
+
+@njit
+def resumable(i, ri, before):  # type: ignore[no-untyped-def]
+    """Robot i, whose state was ``before`` the election, can take up its work again for
+    the same target: it was Queued or searching, or placed and still holds its tag (a
+    placed robot that missed the election may have given it up, see ``catch_up``)."""
+    if before in (QUEUED, SEARCH):
+        return True
+    return INACTIVE <= before <= STABLE and ri[i, R_HAS_TAG] == 1
+
+
+@njit
+def resume(i, tick, ri, before, electing, old):  # type: ignore[no-untyped-def]
+    """Robot i, which worked for epoch ``old``, takes up its work again after an election
+    that kept its target (a false alarm): if it was ``electing`` it goes back to its state
+    ``before``; its site, TS, offset, neighbour table and queue all stay as they were.
+    A robot that started the election excuses the neighbour sites it missed (R_MISSING):
+    they count as held until it adopts a new target, so the lattice's stretching that
+    made it miss them does not start the same election again. Traced on `H` seed 75:
+    searchers diving for a free site had pushed two Stable neighbours 94 mm apart, and
+    the whole shape, nearly formed, regrew from its seeds again and again."""
+    if electing:  # (a robot that missed the election never left its state)
+        ri[i, R_STATE] = before
+        ri[i, R_SINCE] = ri[i, R_PRE_SINCE]
+    ri[i, R_EXCUSED] |= ri[i, R_MISSING]
+    ri[i, R_MISSING] = 0
+    ri[i, R_RESUMED_AT] = tick + 1
+    if ri[i, R_HELD_EPOCH] == old + 1:
+        ri[i, R_HELD_EPOCH] = ri[i, R_EPOCH] + 1  # what it remembers held still holds
 
 
 @njit

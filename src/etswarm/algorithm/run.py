@@ -27,6 +27,10 @@ from etswarm.algorithm.memory import (
     R_WALK_END,
     R_WALK_RESULT,
     R_WALK_TAGS,
+    SLOT_N,
+    SLOT_SHAPE,
+    SLOT_TX,
+    SLOT_TY,
 )
 from etswarm.algorithm.params import ETParams
 from etswarm.algorithm.placement import RemnantView, choose_translation
@@ -221,7 +225,9 @@ class ETRun:
             row = ctl.ri[leader]
             n = int(row[R_CENSUS])
             cells, tx, ty = self._scaled_placement(int(leader), n)
+            old_slot = int(row[R_TSLOT])
             slot = ctl.answer(int(leader), cells, n, tx, ty)
+            kept = ctl.slot_info[slot, SLOT_SHAPE] == ctl.slot_info[old_slot, SLOT_SHAPE]
             group = self._group_of(int(leader))
             # The robot's clock: election began, Leader declared, census concluded.
             elected_s = int(row[R_SINCE]) / tps
@@ -240,6 +246,8 @@ class ETRun:
                 census["tags"] = int(row[R_WALK_TAGS])
             self.census[slot] = census
             self._event("census", **census, slot=slot)
+            if kept and self.config.et.false_alarm == "resume":
+                self._event("target_kept", leader=int(leader), slot=slot)
         ctl.stop[0] = 0
 
     def _event_at(self, t_s: float, kind: str, **fields: Any) -> None:
@@ -257,8 +265,15 @@ class ETRun:
         dead robot may stand there, see ``silent``). Empty when n < 3 (too small to seed)."""
         if n < 3:
             return np.zeros((0, 2), dtype=np.int64), 0, 0
-        cells = scale(self.shape, min(n, self.shape.n_cells))
         ctl = self.controller
+        slot = int(ctl.ri[leader, R_TSLOT])
+        if self.config.et.false_alarm == "resume" and min(n, self.shape.n_cells) == int(
+            ctl.slot_info[slot, SLOT_N]
+        ):
+            # As many robots as the target it has: nothing was lost, keep it where it is.
+            tx, ty = int(ctl.slot_info[slot, SLOT_TX]), int(ctl.slot_info[slot, SLOT_TY])
+            return ctl.slot_cells[slot], tx, ty
+        cells = scale(self.shape, min(n, self.shape.n_cells))
         lx, ly = (int(v) for v in ctl.ri[leader, [R_TAG_X, R_TAG_Y]])
         # Robots heard since the election began are the remnant's; older entries left.
         known = ctl.known_tags(leader, int(ctl.ri[leader, R_ELECT_SINCE]))
@@ -314,10 +329,11 @@ class ETRun:
             slot = comp["slot"]
             if comp["formed"] and slot not in self.reformed_at:
                 self.reformed_at[slot] = self.sim_time_s
-                if slot == 0 and self.formed_at_s is None:
+                first = self._is_first_target(slot)
+                if first and self.formed_at_s is None:
                     self.formed_at_s = self.sim_time_s
                     self._event("formed", cells=comp["target_cells"])
-                elif slot != 0:
+                elif not first:
                     self._event("reformed", slot=slot, cells=comp["target_cells"])
         if (
             self.settled_at_s is None
@@ -325,6 +341,14 @@ class ETRun:
             and all(c["formed"] or c["too_small"] for c in comps)
         ):
             self.settled_at_s = self.sim_time_s
+
+    def _is_first_target(self, slot: int) -> bool:
+        """Target ``slot`` is the run's first: the original (slot 0), or, before any
+        damage, a slot with its cells (kept by a false alarm, see ``ETParams.false_alarm``)."""
+        info = self.controller.slot_info
+        return slot == 0 or (
+            self.last_damage_s is None and info[slot, SLOT_SHAPE] == info[0, SLOT_SHAPE]
+        )
 
     def _target_size(self, slot: int) -> int:
         """Distinct tags of target ``slot``'s cells (targets never change once stored)."""
@@ -424,7 +448,7 @@ class ETRun:
             too_small = slot != 0 and len(target) == 0
             g_holds = holds & member
             g_formed = len(target) > 0 and is_formed(tags, g_holds, stable & member, target)
-            start = 0.0 if slot == 0 else (self.last_damage_s or 0.0)
+            start = 0.0 if self._is_first_target(slot) else (self.last_damage_s or 0.0)
             done = self.reformed_at.get(slot)
             if g_formed and done is None:
                 done = self.sim_time_s
