@@ -27,8 +27,13 @@ from etswarm.algorithm.memory import (
     R_EPOCH,
     R_EXCUSED,
     R_HAS_TAG,
+    R_HELD_EPOCH,
     R_MISSING,
     R_NN,
+    R_PEND_EPOCH,
+    R_PEND_N,
+    R_PEND_TX,
+    R_PEND_TY,
     R_PHASE,
     R_PRE_SINCE,
     R_PRE_STATE,
@@ -44,7 +49,7 @@ from etswarm.algorithm.memory import (
 )
 from etswarm.algorithm.params import ETParams
 from etswarm.algorithm.placed import placed_rule
-from etswarm.algorithm.regeneration import adopt_target
+from etswarm.algorithm.regeneration import adopt_target, catch_up
 from etswarm.algorithm.run import ETRun, RunConfig
 from etswarm.algorithm.states import State
 
@@ -115,6 +120,22 @@ def test_otherwise_the_shape_regrows_from_its_seeds(case: str) -> None:
     assert list(ri[:, R_STATE]) == [State.ACTIVE, State.QUEUED, State.QUEUED]
     assert ri[0, R_TS] == 1 and ri[0, R_EXCUSED] == 0
     assert ctl.nb[0, 0, NB_ID] == -1 and ri[2, R_RELEASED] == 0
+
+
+@pytest.mark.parametrize("same", [True, False])
+def test_a_searcher_that_missed_it_keeps_its_memory_of_held_sites(same: bool) -> None:
+    ctl = ETController(1, HEXAGON, ETParams(), TPS)
+    cells = HEXAGON if same else HEXAGON[:5].copy()
+    slot = ctl.add_target(cells, release_limit=len(cells), tx=0, ty=0)
+    ri = ctl.ri
+    ri[0, R_STATE] = State.SEARCH
+    ri[0, R_HELD_EPOCH] = 1  # its memory is of epoch 0's target
+    ri[0, R_PEND_EPOCH], ri[0, R_PEND_N], ri[0, R_PEND_TX], ri[0, R_PEND_TY] = 1, len(cells), 0, 0
+    assert catch_up(
+        0, TICK, ri, ctl.nb, ctl.nb_dist, ctl.gene_flag, ctl.gene_nn, ctl.slot_info, ctl.ci
+    )
+    assert ri[0, R_STATE] == State.SEARCH and (ri[0, R_EPOCH], ri[0, R_TSLOT]) == (1, slot)
+    assert ri[0, R_HELD_EPOCH] == (2 if same else 1)  # (a stale memory is cleared on use)
 
 
 def stable_centre(heard_dirs: tuple[int, ...]) -> ETController:

@@ -391,12 +391,11 @@ class ETParams:
     #: contact with its own) starts an election; both remnants' robots join it and elect
     #: as one (``merge``). "off": remnants that meet stay apart.
     merge_remnants: str = "on"
-    #: "resume": a Leader whose census gives the robot count of its remnant's current
-    #: target keeps that target where it is, and every robot goes back to the state it
-    #: had before the election (a false alarm: nothing was lost); a robot that started
-    #: the election no longer counts the neighbour sites it missed then
-    #: (``regeneration.resume``). "regrow": every election regrows the shape from its
-    #: seeds (the paper).
+    #: "resume": a Leader whose census equals the cell count of its current target keeps
+    #: that target where it is, and every robot goes back to the state it had before the
+    #: election (a false alarm: nothing was lost); a robot that started the election
+    #: counts the neighbour sites it missed then as held (``regeneration.resume``).
+    #: "regrow": every election regrows the shape from its seeds (the paper).
     false_alarm: str = "resume"
 
     def __post_init__(self) -> None:

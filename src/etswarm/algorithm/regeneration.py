@@ -390,8 +390,15 @@ def resume(i, tick, ri, before, electing, old):  # type: ignore[no-untyped-def]
     ri[i, R_EXCUSED] |= ri[i, R_MISSING]
     ri[i, R_MISSING] = 0
     ri[i, R_RESUMED_AT] = tick + 1
+    carry_memory(i, ri, old, ri[i, R_EPOCH])
+
+
+@njit
+def carry_memory(i, ri, old, new):  # type: ignore[no-untyped-def]
+    """Robot i's memory of held sites, kept for epoch ``old``, holds for epoch ``new`` too
+    (a kept target: the sites it heard held are still held)."""
     if ri[i, R_HELD_EPOCH] == old + 1:
-        ri[i, R_HELD_EPOCH] = ri[i, R_EPOCH] + 1  # what it remembers held still holds
+        ri[i, R_HELD_EPOCH] = new + 1
 
 
 @njit
@@ -437,6 +444,10 @@ def catch_up(i, tick, ri, nb, nb_dist, gene_flag, gene_nn, slot_info, ci):  # ty
         return False
     epoch = ri[i, R_PEND_EPOCH]
     if ri[i, R_STATE] == SEARCH:
+        if ci[C_FALSE_ALARM] == 1 and (
+            slot_info[slot, SLOT_SHAPE] == slot_info[ri[i, R_TSLOT], SLOT_SHAPE]
+        ):
+            carry_memory(i, ri, ri[i, R_EPOCH], epoch)  # the same target
         ri[i, R_EPOCH] = epoch
         ri[i, R_TSLOT] = slot
         ri[i, R_ADOPTED_AT] = tick

@@ -267,10 +267,10 @@ class ETRun:
             return np.zeros((0, 2), dtype=np.int64), 0, 0
         ctl = self.controller
         slot = int(ctl.ri[leader, R_TSLOT])
-        if self.config.et.false_alarm == "resume" and min(n, self.shape.n_cells) == int(
-            ctl.slot_info[slot, SLOT_N]
-        ):
+        if self.config.et.false_alarm == "resume" and n == int(ctl.slot_info[slot, SLOT_N]):
             # As many robots as the target it has: nothing was lost, keep it where it is.
+            # (More robots than that elect as before: a remnant with spare robots may have
+            # lost some of its sites, and the spares would not be released for them.)
             tx, ty = int(ctl.slot_info[slot, SLOT_TX]), int(ctl.slot_info[slot, SLOT_TY])
             return ctl.slot_cells[slot], tx, ty
         cells = scale(self.shape, min(n, self.shape.n_cells))
