@@ -52,6 +52,7 @@ from etswarm.algorithm.placed import placed_rule
 from etswarm.algorithm.regeneration import adopt_target, catch_up
 from etswarm.algorithm.run import ETRun, RunConfig
 from etswarm.algorithm.states import State
+from etswarm.cli.run_outputs import describe
 
 TPS = 31
 TICK = 20_000
@@ -212,12 +213,14 @@ def test_a_robot_silent_for_a_while_starts_a_false_alarm(false_alarm: str) -> No
     summary = run.summary()
     assert summary["duplicate_tags"] == [] and summary["max_leaders_per_component"] <= 1
     assert run.formed() and summary["states"]["Stable"] == n
+    lines = describe(summary)
     if false_alarm == "resume":
         # nothing moved, nothing regrew
         assert len(kept) == 1
+        assert "elections: 1, 1 of them false alarms (nobody lost: the target kept)" in lines
         assert np.array_equal(run.controller.tags, tags)
         assert np.abs(run.world.pos - pos).max() < 1.0
         assert State.DANGER in seen and seen <= {State.STABLE, State.DANGER, State.LEADER}
     else:
-        assert kept == []
+        assert kept == [] and "elections: 1" in lines
         assert State.INACTIVE in seen  # it grew again from its seeds

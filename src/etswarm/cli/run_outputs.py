@@ -160,9 +160,23 @@ def describe(summary: dict[str, Any]) -> list[str]:
                     else ""
                 )
             )
+    lines.extend(election_lines(summary["events"]))
     if not summary["settled"]:
         lines.extend(missing_lines(summary["components"]))
     return lines
+
+
+def election_lines(events: list[dict[str, Any]]) -> list[str]:
+    """One line on the run's elections (one census each), if any: how many, and how many
+    were false alarms (the census counted every robot of the target and kept it)."""
+    elections = sum(e["kind"] == "census" for e in events)
+    if not elections:
+        return []
+    kept = sum(e["kind"] == "target_kept" for e in events)
+    return [
+        f"elections: {elections}"
+        + (f", {kept} of them false alarms (nobody lost: the target kept)" if kept else "")
+    ]
 
 
 def missing_lines(components: list[dict[str, Any]]) -> list[str]:
