@@ -56,17 +56,32 @@ def test_reset_does_not_refine_with_site_offsets_off() -> None:
     assert ri[0, R_OFF_REFINE] == 0
 
 
-def test_two_neighbour_sites_widen_only_after_the_set_time() -> None:
-    _, cf = ETParams(two_neighbour_widen_s=600.0).pack(31, 0, 0)
-    assert cf[F_TWO_WIDEN_TICKS] == 600 * 31
-    assert wide_minimum(600 * 31 - 1, cf) == WIDE_MIN_NEIGHBOURS
-    assert wide_minimum(600 * 31, cf) == 2
-    _, off = ETParams().pack(31, 0, 0)
-    assert wide_minimum(10**9, off) == WIDE_MIN_NEIGHBOURS
+@pytest.mark.parametrize("epoch", [0, 3])
+def test_two_neighbour_sites_widen_only_after_the_set_time(epoch: int) -> None:
+    """First formation (epoch 0): ``two_neighbour_widen_s``; after damage:
+    ``regrowth_two_neighbour_widen_s``; 0 turns it off."""
+    name = "two_neighbour_widen_s" if epoch == 0 else "regrowth_two_neighbour_widen_s"
+    _, cf = ETParams(**{name: 600.0}).pack(31, 0, 0)
+    assert wide_minimum(600 * 31 - 1, epoch, cf) == WIDE_MIN_NEIGHBOURS
+    assert wide_minimum(600 * 31, epoch, cf) == 2
+    _, off = ETParams(two_neighbour_widen_s=0.0).pack(31, 0, 0)
+    assert wide_minimum(10**9, epoch, off) == WIDE_MIN_NEIGHBOURS
+
+
+def test_by_default_only_the_first_formation_widens_at_two_neighbours() -> None:
+    _, cf = ETParams().pack(31, 0, 0)
+    assert cf[F_TWO_WIDEN_TICKS] == 1800 * 31
+    assert wide_minimum(1800 * 31, 0, cf) == 2
+    assert wide_minimum(10**9, 1, cf) == WIDE_MIN_NEIGHBOURS
 
 
 @pytest.mark.parametrize(
-    ("name", "value"), [("regrowth_offsets", "forget"), ("two_neighbour_widen_s", -1.0)]
+    ("name", "value"),
+    [
+        ("regrowth_offsets", "forget"),
+        ("two_neighbour_widen_s", -1.0),
+        ("regrowth_two_neighbour_widen_s", -1.0),
+    ],
 )
 def test_bad_values_are_rejected(name: str, value: object) -> None:
     with pytest.raises(EtswarmError, match=name):

@@ -59,3 +59,23 @@ def test_faster_widening_fills_the_last_site_sooner() -> None:
         assert summary["formed"] and summary["jaccard"] == 1.0
         assert summary["duplicate_tags"] == []
     assert fast["formation_time_s"] <= slow["formation_time_s"] - 600
+
+
+def test_a_tip_with_two_neighbours_gets_the_wide_window_late_in_the_first_formation() -> None:
+    from etswarm.algorithm.run import ETRun, RunConfig
+
+    # H seed 62 (session 27): the last free site, (1, 5), is the top corner of a leg with
+    # two placed neighbours, both standing about 30 mm off their sites. Without the wide
+    # window there (only pockets of three neighbours got it) the last searcher went round
+    # the H for the rest of the 4 h run.
+    def run(**options: float) -> dict:
+        config = RunConfig(shape="H", seed=62, max_time_s=4 * 3600, et=ETParams(**options))
+        return ETRun(config).run()
+
+    default = run()
+    assert default["formed"] and default["jaccard"] == 1.0
+    assert default["duplicate_tags"] == []
+    never = run(two_neighbour_widen_s=0.0)
+    assert not never["formed"]
+    (group,) = never["components"]
+    assert group["free_tags"] == [[1, 5]] and group["searching"] == 1

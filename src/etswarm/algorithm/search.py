@@ -114,6 +114,7 @@ from etswarm.algorithm.params import (
     F_FOLLOW_OFFSET,
     F_PAIR_AIM,
     F_PAIR_TOL,
+    F_REGROW_TWO_WIDEN_TICKS,
     F_REGROW_WIDEN_TICKS,
     F_SETTLE_SCALE,
     F_SPACING,
@@ -617,12 +618,13 @@ def hovering(i, tick, ri, ci):  # type: ignore[no-untyped-def]
 
 
 @njit(inline="always")
-def wide_minimum(at_shape, cf):  # type: ignore[no-untyped-def]
-    """Placed neighbours a searcher ``at_shape`` ticks at the shape must hear round a site
-    for the site to get its widened window: ``WIDE_MIN_NEIGHBOURS``, or two once it has
-    been ``F_TWO_WIDEN_TICKS`` (> 0) at the shape."""
-    late = cf[F_TWO_WIDEN_TICKS] > 0 and at_shape >= cf[F_TWO_WIDEN_TICKS]
-    return 2 if late else WIDE_MIN_NEIGHBOURS
+def wide_minimum(at_shape, epoch, cf):  # type: ignore[no-untyped-def]
+    """Placed neighbours a searcher of target ``epoch``, ``at_shape`` ticks at the shape,
+    must hear round a site for the site to get its widened window: ``WIDE_MIN_NEIGHBOURS``,
+    or two once it has been ``F_TWO_WIDEN_TICKS`` (> 0) at the shape in the first
+    formation, ``F_REGROW_TWO_WIDEN_TICKS`` (> 0) after damage."""
+    after = cf[F_TWO_WIDEN_TICKS] if epoch == 0 else cf[F_REGROW_TWO_WIDEN_TICKS]
+    return 2 if after > 0 and at_shape >= after else WIDE_MIN_NEIGHBOURS
 
 
 @njit(inline="always")
@@ -767,7 +769,7 @@ def search_rule(  # type: ignore[no-untyped-def]
         came = ri[i, R_FROM_ID]
         since = ri[i, R_SUB_SINCE]
         orbit = ri[i, R_ORBIT]
-        wide_min = wide_minimum(at_shape, cf)
+        wide_min = wide_minimum(at_shape, ri[i, R_EPOCH], cf)
         found, cx, cy, min_ts = find_site(
             i, tick, since, True, ref, came, orbit, nb, nb_dist, gene_flag, ci, cf, widen,
             wide_min, held_i, ox, oy, pair_aim, cf[F_SETTLE_SCALE],
@@ -848,7 +850,7 @@ def search_rule(  # type: ignore[no-untyped-def]
             since = tick - phase + 1  # only readings taken standing still
         else:
             since = tick + 1  # moving: no capture
-        wide_min = wide_minimum(at_shape, cf)
+        wide_min = wide_minimum(at_shape, ri[i, R_EPOCH], cf)
         found, cx, cy, min_ts = find_site(
             i, tick, since, False, ref, came, orbit, nb, nb_dist, gene_flag, ci, cf, widen,
             wide_min, held_i, ox, oy, pair_aim, 1.0,
