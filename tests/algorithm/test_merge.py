@@ -25,6 +25,8 @@ from etswarm.algorithm.params import ETParams
 from etswarm.algorithm.run import ETRun, RunConfig
 from etswarm.algorithm.states import State
 
+from .traced import SESSION_26_FORMATION
+
 GENE_X0 = -3
 
 
@@ -101,9 +103,11 @@ def test_two_remnants_grown_into_each_other_regrow_as_one() -> None:
     # sites. Apart, neither re-forms in 4 h; merged, one shape of 42 re-forms.
     config = {"shape": "dumbbell", "seed": 19, "damage": ("remove random=0.3",),
               "max_time_s": 7200}
-    apart = ETRun(RunConfig(**config, et=ETParams(merge_remnants="off"))).run()
+    apart = ETRun(
+        RunConfig(**config, et=ETParams(merge_remnants="off", **SESSION_26_FORMATION))
+    ).run()
     assert not any(c["formed"] for c in apart["components"] if c["robots"] >= 6)
-    merged = ETRun(RunConfig(**config)).run()
+    merged = ETRun(RunConfig(**config, et=ETParams(**SESSION_26_FORMATION))).run()
     counts = [e["count"] for e in merged["events"] if e["kind"] == "census"]
     assert counts[:2] == [29, 14] and counts[-1] == 42
     assert [c["formed"] and c["jaccard"] == 1.0 for c in merged["components"]] == [True]
