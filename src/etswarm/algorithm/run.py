@@ -262,7 +262,9 @@ class ETRun:
         """scale(bitmap, n), translated as the Leader chooses on board
         (``placement.choose_translation``): on a seed triangle, the Leader's own if it can,
         over as much of the remnant as it knows of, and off the sites that fell silent (a
-        dead robot may stand there, see ``silent``). Empty when n < 3 (too small to seed)."""
+        dead robot may stand there, see ``silent``). Empty when n < 3 (too small to seed).
+        With ``false_alarm`` "resume", a census n equal to the cell count of the Leader's
+        current target keeps that target and its translation (a false alarm)."""
         if n < 3:
             return np.zeros((0, 2), dtype=np.int64), 0, 0
         ctl = self.controller
