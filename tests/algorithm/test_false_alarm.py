@@ -14,7 +14,7 @@ import numpy as np
 import pytest
 
 from etswarm.algorithm.et_controller import ETController
-from etswarm.algorithm.kernel_util import DIR_X, DIR_Y
+from etswarm.algorithm.kernel_util import DIR_X, DIR_Y, first_growth
 from etswarm.algorithm.memory import (
     NB_EPOCH,
     NB_ID,
@@ -26,6 +26,7 @@ from etswarm.algorithm.memory import (
     PHASE_NORMAL,
     R_EPOCH,
     R_EXCUSED,
+    R_GROWTH,
     R_HAS_TAG,
     R_HELD_EPOCH,
     R_MISSING,
@@ -108,6 +109,9 @@ def test_every_robot_goes_back_to_what_it_was() -> None:
     assert ri[0, R_EXCUSED] == 1 << 2 and ri[0, R_MISSING] == 0
     assert ctl.nb[0, 0, NB_ID] == 1  # its neighbour table stands
     assert ri[2, R_RELEASED] == 4  # the repository goes on where it was
+    # still the first formation's growth: its rules (widening times, release order...)
+    assert list(ri[:, R_GROWTH]) == [0, 0, 0]
+    assert all(first_growth(i, ri) for i in range(3))
 
 
 @pytest.mark.parametrize("case", ["regrow", "smaller target"])
@@ -121,6 +125,8 @@ def test_otherwise_the_shape_regrows_from_its_seeds(case: str) -> None:
     assert list(ri[:, R_STATE]) == [State.ACTIVE, State.QUEUED, State.QUEUED]
     assert ri[0, R_TS] == 1 and ri[0, R_EXCUSED] == 0
     assert ctl.nb[0, 0, NB_ID] == -1 and ri[2, R_RELEASED] == 0
+    assert list(ri[:, R_GROWTH]) == [1, 1, 1]  # a regrowth: its own rules
+    assert not any(first_growth(i, ri) for i in range(3))
 
 
 @pytest.mark.parametrize("same", [True, False])
@@ -137,6 +143,7 @@ def test_a_searcher_that_missed_it_keeps_its_memory_of_held_sites(same: bool) ->
     )
     assert ri[0, R_STATE] == State.SEARCH and (ri[0, R_EPOCH], ri[0, R_TSLOT]) == (1, slot)
     assert ri[0, R_HELD_EPOCH] == (2 if same else 1)  # (a stale memory is cleared on use)
+    assert ri[0, R_GROWTH] == (0 if same else 1)
 
 
 def stable_centre(heard_dirs: tuple[int, ...]) -> ETController:

@@ -14,6 +14,7 @@ from etswarm.algorithm.memory import (
     NB_TY,
     PHASE_ELECTING,
     R_EPOCH,
+    R_GROWTH,
     R_PHASE,
     R_STATE,
     R_TAG_X,
@@ -40,7 +41,7 @@ def beside_a_stranger(tag: tuple[int, int], reading: float, epoch: int = 1,
     ci, _ = (et or ETParams()).pack(31, gene_x0=GENE_X0, gene_y0=GENE_X0)
     ri, nb, nb_dist = allocate(2)
     ri[0, R_STATE] = State.STABLE
-    ri[0, R_EPOCH] = epoch
+    ri[0, R_EPOCH] = ri[0, R_GROWTH] = epoch
     ri[0, R_TAG_X], ri[0, R_TAG_Y] = 0, 0
     nb[0, 0, NB_ID] = 1
     nb[0, 0, NB_STATE] = State.STABLE

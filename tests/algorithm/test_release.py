@@ -14,6 +14,7 @@ from etswarm.algorithm.memory import (
     NB_QRANK,
     NB_STATE,
     R_EPOCH,
+    R_GROWTH,
     R_QMIN_SINCE,
     R_QRANK,
     R_SHAPE_HOPS,
@@ -51,7 +52,7 @@ def chain(order: str):  # type: ignore[no-untyped-def]
     hears the placed robot, 0 hears 5 and 7, 7 hears only 0. Every robot knows the hop
     counts the others send (5: 1, 0: 2, 7: 3)."""
     ri, nb, _ = allocate(10)
-    ri[:, R_EPOCH] = 1
+    ri[:, R_EPOCH] = ri[:, R_GROWTH] = 1  # a regrowth's target
     ri[:, R_QMIN_SINCE] = 0
     hear(nb, 5, 0, 9, State.STABLE, 0)
     hear(nb, 5, 1, 0, State.QUEUED, 2)
@@ -83,13 +84,23 @@ def test_the_far_end_of_a_chain_leaves_first(order: str, leaves: int) -> None:
         assert [ri[i, R_SHAPE_HOPS] for i in (5, 0, 7)] == [1, 2, 3]
 
 
+def test_a_kept_target_releases_as_the_first_formation_did() -> None:
+    # After a false alarm in the first formation the robots work for epoch 1, but their
+    # growth is still the first formation's (R_GROWTH 0): the lowest ID leaves first.
+    ri, nb, ci = chain("far")
+    ri[:, R_GROWTH] = 0
+    for i in (5, 0, 7):
+        queued_rule(i, TICK, ri, nb, ci, 100)
+    assert [i for i in (5, 0, 7) if ri[i, R_STATE] == State.SEARCH] == [0]
+
+
 @pytest.mark.parametrize("order", ["far", "id"])
 def test_a_robot_of_a_remnant_too_small_to_grow_holds_back_no_release(order: str) -> None:
     # Robot 9 is all that is left of its remnant (its target is empty, limit 0); robot 4,
     # of the remnant beside it, hears it and the placed robot 2 of its own shape. (With
     # lowest-ID release robot 9 held back only robots of higher IDs.)
     ri, nb, _ = allocate(10)
-    ri[:, R_EPOCH] = 1
+    ri[:, R_EPOCH] = ri[:, R_GROWTH] = 1  # a regrowth's target
     ri[:, R_QMIN_SINCE] = 0
     ri[9, R_SHAPE_HOPS] = HOPS_NONE
     ci, _ = ETParams(release_order=order).pack(31, 0, 0)
@@ -136,7 +147,7 @@ def crowded_far_end(epoch: int):  # type: ignore[no-untyped-def]
     """The chain of ``chain``, with a searcher (ID 8) beside its far end (robot 7), heard
     again at every evaluation; every robot works for target ``epoch``."""
     ri, nb, ci = chain("far")
-    ri[:, R_EPOCH] = epoch
+    ri[:, R_EPOCH] = ri[:, R_GROWTH] = epoch
     for i in range(10):
         for slot in range(nb.shape[1]):
             if nb[i, slot, NB_ID] >= 0:

@@ -7,6 +7,7 @@ import math
 from numba import njit
 
 from etswarm.algorithm.memory import (
+    R_GROWTH,
     R_SINCE,
     R_STATE,
 )
@@ -80,6 +81,14 @@ def gene_at(grid, ci, x, y):  # type: ignore[no-untyped-def]
     if gx < 0 or gy < 0 or gx >= grid.shape[0] or gy >= grid.shape[1]:
         return 0
     return grid[gx, gy]
+
+
+@njit(inline="always")
+def first_growth(i, ri):  # type: ignore[no-untyped-def]
+    """Robot i still works on the first formation: no election since the start gave it a
+    new target (a false alarm's kept target does not count, see ``R_GROWTH``). The rules
+    tuned apart for the first formation and for regrowth ask this, not the epoch."""
+    return ri[i, R_GROWTH] == 0
 
 
 @njit

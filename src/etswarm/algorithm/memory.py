@@ -197,7 +197,11 @@ R_EXCUSED = R_MISSING + 1
 #: Tick + 1 at which the robot resumed after a false alarm (0: it has not since it last
 #: adopted a target); for a quiet time after it, it starts no election.
 R_RESUMED_AT = R_EXCUSED + 1
-R_FIELDS = R_RESUMED_AT + 1
+#: The epoch whose target the robot's present growth began with: its epoch when it
+#: adopted a new target, kept when it resumed after a false alarm. 0 while it still works
+#: on the first formation, whatever elections were false alarms (``first_growth``).
+R_GROWTH = R_RESUMED_AT + 1
+R_FIELDS = R_GROWTH + 1
 
 PHASE_NORMAL = 0
 PHASE_ELECTING = 1

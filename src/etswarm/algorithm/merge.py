@@ -20,7 +20,7 @@ from __future__ import annotations
 
 from numba import njit
 
-from etswarm.algorithm.kernel_util import is_placed
+from etswarm.algorithm.kernel_util import first_growth, is_placed
 from etswarm.algorithm.memory import (
     NB_EPOCH,
     NB_ID,
@@ -49,7 +49,7 @@ def contact_rule(i, tick, ri, nb, nb_dist, gene_flag, ci):  # type: ignore[no-un
     """Placed robot i (normal phase) of a regenerated target, whose target's gene flags are
     ``gene_flag``: start an election once a robot of another remnant has stood beside it
     for ``MERGE_AFTER_TICKS`` (R_CONTACT_SINCE keeps since when). Returns True when it did."""
-    if ci[C_MERGE] == 0 or ri[i, R_EPOCH] == 0 or ri[i, R_PHASE] != PHASE_NORMAL:
+    if ci[C_MERGE] == 0 or first_growth(i, ri) or ri[i, R_PHASE] != PHASE_NORMAL:
         return False
     fresh = ci[C_TICKS_NB_FRESH]
     epoch = ri[i, R_EPOCH]

@@ -69,6 +69,7 @@ from etswarm.algorithm.memory import (
     R_EXT_GREW,
     R_FLOOR,
     R_FLOOR_SINCE,
+    R_GROWTH,
     R_HAS_TAG,
     R_HELD_EPOCH,
     R_HOP,
@@ -334,6 +335,7 @@ def adopt_target(i, tick, ri, nb, slot, epoch, leader, gene_flag, gene_nn, slot_
     if same and ci[C_FALSE_ALARM] == 1 and resumable(i, ri, before):
         resume(i, tick, ri, before, electing, old_epoch)
         return
+    ri[i, R_GROWTH] = epoch
     for m in range(nb.shape[1]):
         nb[i, m, NB_ID] = -1
     ri[i, R_COUNT] = 0
@@ -448,6 +450,8 @@ def catch_up(i, tick, ri, nb, nb_dist, gene_flag, gene_nn, slot_info, ci):  # ty
             slot_info[slot, SLOT_SHAPE] == slot_info[ri[i, R_TSLOT], SLOT_SHAPE]
         ):
             carry_memory(i, ri, ri[i, R_EPOCH], epoch)  # the same target
+        else:
+            ri[i, R_GROWTH] = epoch
         ri[i, R_EPOCH] = epoch
         ri[i, R_TSLOT] = slot
         ri[i, R_ADOPTED_AT] = tick

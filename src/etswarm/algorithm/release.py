@@ -22,6 +22,7 @@ from numba import njit
 from etswarm.algorithm.kernel_util import (
     QUEUED,
     SEARCH,
+    first_growth,
     is_placed,
 )
 from etswarm.algorithm.memory import (
@@ -140,8 +141,9 @@ def queued_rule(i, tick, ri, nb, ci, limit):  # type: ignore[no-untyped-def]
     last_searcher = -(1 << 40)
     lowest = i
     epoch = ri[i, R_EPOCH]
-    far_first = ci[C_RELEASE_FAR] == 1 and epoch > 0
-    parked = epoch > 0 and limit == 0
+    regrowth = not first_growth(i, ri)  # (a false alarm's kept target is no regrowth)
+    far_first = ci[C_RELEASE_FAR] == 1 and regrowth
+    parked = regrowth and limit == 0
     if parked:
         ri[i, R_SHAPE_HOPS] = HOPS_PARKED  # its remnant grows nothing: it stays put
     elif far_first:
@@ -150,7 +152,7 @@ def queued_rule(i, tick, ri, nb, ci, limit):  # type: ignore[no-untyped-def]
     hold_ticks = ci[C_TICKS_HOLD]
     hold = ri[i, R_HOLD_UNTIL]
     lowest_last = 0  # tick the lowest Queued robot heard was last heard
-    ranked = epoch == 0 and ci[C_TICKS_RANK_WAIT] > 0
+    ranked = not regrowth and ci[C_TICKS_RANK_WAIT] > 0
     rank = ri[i, R_QRANK]
     floor_rank = ri[i, R_FLOOR_RANK]
     for m in range(nb.shape[1]):
@@ -172,7 +174,7 @@ def queued_rule(i, tick, ri, nb, ci, limit):  # type: ignore[no-untyped-def]
                 hold = max(hold, nb[i, m, NB_LAST] + hold_ticks)
             elif st == QUEUED and byte6 > 1:
                 hold = max(hold, nb[i, m, NB_LAST] + (byte6 - 1) * HOLD_UNIT_TICKS)
-        if st != QUEUED or (epoch > 0 and nb[i, m, NB_HOPS] == HOPS_PARKED):
+        if st != QUEUED or (regrowth and nb[i, m, NB_HOPS] == HOPS_PARKED):
             continue  # (a parked robot of a remnant too small to grow never leaves)
         if sid < i:
             rank = max(rank, nb[i, m, NB_QRANK] + 1)
@@ -201,7 +203,7 @@ def queued_rule(i, tick, ri, nb, ci, limit):  # type: ignore[no-untyped-def]
     # (counted from when it became the lowest, too: news it missed while asleep are old)
     rank_ends = max(ri[i, R_RANK_NEWS], ri[i, R_QMIN_SINCE]) + ci[C_TICKS_RANK_WAIT]
     clear = tick - last_searcher >= ci[C_TICKS_CLEAR]
-    crowded_waits = epoch > 0 and ci[C_TICKS_CROWDED] > 0
+    crowded_waits = regrowth and ci[C_TICKS_CROWDED] > 0
     if crowded_waits:
         # (called even when clear: a clear evaluation ends the crowded stretch)
         crowded = crowded_long(i, tick, ri, ci, clear)

@@ -25,6 +25,7 @@ from etswarm.algorithm.kernel_util import (
     SEARCH,
     STOP,
     direction_index,
+    first_growth,
     gene_at,
     hex_distance,
     is_placed,
@@ -45,8 +46,8 @@ from etswarm.algorithm.memory import (
     R_COOLDOWN,
     R_COUNT,
     R_CREEP_UNTIL,
-    R_EPOCH,
     R_FROM_ID,
+    R_GROWTH,
     R_HAS_TAG,
     R_HOVER_SINCE,
     R_HOVER_X,
@@ -609,7 +610,7 @@ def hovering(i, tick, ri, ci):  # type: ignore[no-untyped-def]
     """Robot i, searching for a regenerated target, has crept near one free site for
     ``regrowth_hover_s`` (``note_hover``). Hovering ends when its creep mode runs out while
     it moves on."""
-    if ci[C_TICKS_HOVER] <= 0 or ri[i, R_EPOCH] == 0 or ri[i, R_HOVER_SINCE] == 0:
+    if ci[C_TICKS_HOVER] <= 0 or first_growth(i, ri) or ri[i, R_HOVER_SINCE] == 0:
         return False
     if ri[i, R_SUB] == SUB_FOLLOW and tick >= ri[i, R_CREEP_UNTIL]:
         ri[i, R_HOVER_SINCE] = 0
@@ -618,32 +619,33 @@ def hovering(i, tick, ri, ci):  # type: ignore[no-untyped-def]
 
 
 @njit(inline="always")
-def wide_minimum(at_shape, epoch, cf):  # type: ignore[no-untyped-def]
-    """Placed neighbours a searcher of target ``epoch``, ``at_shape`` ticks at the shape,
-    must hear round a site for the site to get its widened window: ``WIDE_MIN_NEIGHBOURS``,
-    or two once it has been ``F_TWO_WIDEN_TICKS`` (> 0) at the shape in the first
-    formation, ``F_REGROW_TWO_WIDEN_TICKS`` (> 0) after damage."""
-    after = cf[F_TWO_WIDEN_TICKS] if epoch == 0 else cf[F_REGROW_TWO_WIDEN_TICKS]
+def wide_minimum(at_shape, growth, cf):  # type: ignore[no-untyped-def]
+    """Placed neighbours a searcher of growth ``growth`` (R_GROWTH), ``at_shape`` ticks at
+    the shape, must hear round a site for the site to get its widened window:
+    ``WIDE_MIN_NEIGHBOURS``, or two once it has been ``F_TWO_WIDEN_TICKS`` (> 0) at the
+    shape in the first formation, ``F_REGROW_TWO_WIDEN_TICKS`` (> 0) after damage."""
+    after = cf[F_TWO_WIDEN_TICKS] if growth == 0 else cf[F_REGROW_TWO_WIDEN_TICKS]
     return 2 if after > 0 and at_shape >= after else WIDE_MIN_NEIGHBOURS
 
 
 @njit(inline="always")
-def widening_ticks(epoch, cf):  # type: ignore[no-untyped-def]
-    """Ticks at the shape over which a searcher of target ``epoch`` widens its windows:
-    ``F_WIDEN_TICKS`` in the first formation, ``F_REGROW_WIDEN_TICKS`` after damage."""
-    return cf[F_WIDEN_TICKS] if epoch == 0 else cf[F_REGROW_WIDEN_TICKS]
+def widening_ticks(growth, cf):  # type: ignore[no-untyped-def]
+    """Ticks at the shape over which a searcher of growth ``growth`` (R_GROWTH) widens its
+    windows: ``F_WIDEN_TICKS`` in the first formation, ``F_REGROW_WIDEN_TICKS`` after
+    damage."""
+    return cf[F_WIDEN_TICKS] if growth == 0 else cf[F_REGROW_WIDEN_TICKS]
 
 
 @njit(inline="always")
-def dive_depth(at_shape, epoch, cf):  # type: ignore[no-untyped-def]
+def dive_depth(at_shape, growth, cf):  # type: ignore[no-untyped-def]
     """How much nearer than d + follow offset (mm) a searcher ``at_shape`` ticks at the
-    shape edge-follows: after damage (``epoch`` > 0) up to ``F_DIVE`` over its first
-    widening time (``widening_ticks``); in the first formation up to ``F_DIVE_FIRST``
-    over the next widening time after that."""
-    widen_ticks = widening_ticks(epoch, cf)
+    shape edge-follows: after damage (``growth`` > 0, R_GROWTH) up to ``F_DIVE`` over its
+    first widening time (``widening_ticks``); in the first formation up to
+    ``F_DIVE_FIRST`` over the next widening time after that."""
+    widen_ticks = widening_ticks(growth, cf)
     if at_shape <= 0:
         return 0.0
-    if epoch > 0:
+    if growth > 0:
         return cf[F_DIVE] * min(1.0, at_shape / widen_ticks)
     return cf[F_DIVE_FIRST] * min(1.0, max(0.0, at_shape / widen_ticks - 1.0))
 
@@ -754,7 +756,7 @@ def search_rule(  # type: ignore[no-untyped-def]
     at_shape = 0
     if ri[i, R_SHAPE_SINCE] > 0:
         at_shape = tick - ri[i, R_SHAPE_SINCE] + 1
-        widen_ticks = widening_ticks(ri[i, R_EPOCH], cf)
+        widen_ticks = widening_ticks(ri[i, R_GROWTH], cf)
         widen = 1.0 + (cf[F_WIDEN_MAX] - 1.0) * min(1.0, at_shape / widen_ticks)
         # Long at the shape, it may also take a site from the robots round it (``pocket``).
         pocket = ci[C_POCKET] == 1 and at_shape >= POCKET_AFTER_TICKS
@@ -769,13 +771,13 @@ def search_rule(  # type: ignore[no-untyped-def]
         came = ri[i, R_FROM_ID]
         since = ri[i, R_SUB_SINCE]
         orbit = ri[i, R_ORBIT]
-        wide_min = wide_minimum(at_shape, ri[i, R_EPOCH], cf)
+        wide_min = wide_minimum(at_shape, ri[i, R_GROWTH], cf)
         found, cx, cy, min_ts = find_site(
             i, tick, since, True, ref, came, orbit, nb, nb_dist, gene_flag, ci, cf, widen,
             wide_min, held_i, ox, oy, pair_aim, cf[F_SETTLE_SCALE],
         )
         same = found and cx == ri[i, R_CAND_X] and cy == ri[i, R_CAND_Y]
-        retries = ci[C_SETTLE_RETRIES] if ri[i, R_EPOCH] == 0 else ci[C_REGROW_RETRIES]
+        retries = ci[C_SETTLE_RETRIES] if first_growth(i, ri) else ci[C_REGROW_RETRIES]
         if not same and ri[i, R_SETTLE_TRIES] < retries:
             # Noisy readings may have missed the window: stand on with fresh ones while
             # the candidate is still near.
@@ -796,7 +798,7 @@ def search_rule(  # type: ignore[no-untyped-def]
         if (
             same
             and ri[i, R_PINCH_REFUSED]
-            < (ci[C_PINCH_REFUSALS] if ri[i, R_EPOCH] == 0 else ci[C_REGROW_PINCH_REFUSALS])
+            < (ci[C_PINCH_REFUSALS] if first_growth(i, ri) else ci[C_REGROW_PINCH_REFUSALS])
             and would_pinch(i, cx, cy, since, nb, nb_dist, gene_flag, ci, cf, held_i, ox, oy)
         ):
             same = False  # from here it would narrow a free site: it moves on
@@ -850,7 +852,7 @@ def search_rule(  # type: ignore[no-untyped-def]
             since = tick - phase + 1  # only readings taken standing still
         else:
             since = tick + 1  # moving: no capture
-        wide_min = wide_minimum(at_shape, ri[i, R_EPOCH], cf)
+        wide_min = wide_minimum(at_shape, ri[i, R_GROWTH], cf)
         found, cx, cy, min_ts = find_site(
             i, tick, since, False, ref, came, orbit, nb, nb_dist, gene_flag, ci, cf, widen,
             wide_min, held_i, ox, oy, pair_aim, 1.0,
@@ -888,7 +890,7 @@ def search_rule(  # type: ignore[no-untyped-def]
     # damage from its arrival (``regrowth_dive_mm``), in the first formation once its
     # tolerances have widened (``dive_mm``). Only placed robots may then come nearer than
     # the clearance.
-    dive = dive_depth(at_shape, ri[i, R_EPOCH], cf)
+    dive = dive_depth(at_shape, ri[i, R_GROWTH], cf)
     aim = d + cf[F_FOLLOW_OFFSET] - dive
     # Kilobot orbit (both pivots also move the body forward): pivot away from the group
     # when the last reading of the reference is nearer than the aim, towards it otherwise.
@@ -899,7 +901,7 @@ def search_rule(  # type: ignore[no-untyped-def]
     toward = RIGHT if ri[i, R_ORBIT] == 0 else LEFT
     # Only the first formation's repository is a queue to walk along; after a
     # regeneration the Queued robots stand packed round the shape.
-    along_repository = placed_slot < 0 and ci[C_QUEUE_STRIDE] == 1 and ri[i, R_EPOCH] == 0
+    along_repository = placed_slot < 0 and ci[C_QUEUE_STRIDE] == 1 and first_growth(i, ri)
     placed_clearance = clearance
     if dive > 0 and placed_slot >= 0:
         placed_clearance = min(clearance, aim - CLEARANCE_BELOW_AIM_MM)
