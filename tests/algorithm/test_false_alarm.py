@@ -228,6 +228,10 @@ def test_a_robot_silent_for_a_while_starts_a_false_alarm(false_alarm: str) -> No
         assert np.array_equal(run.controller.tags, tags)
         assert np.abs(run.world.pos - pos).max() < 1.0
         assert State.DANGER in seen and seen <= {State.STABLE, State.DANGER, State.LEADER}
+        # epoch 1's target, but still the first formation's growth and rules
+        ri = run.controller.ri
+        assert set(ri[:, R_EPOCH]) == {1} and set(ri[:, R_GROWTH]) == {0}
     else:
         assert kept == [] and "elections: 1" in lines
         assert State.INACTIVE in seen  # it grew again from its seeds
+        assert set(run.controller.ri[:, R_GROWTH]) == {1}
