@@ -9,7 +9,7 @@ and the number of runs that ended with a tag held by two robots.
         [--control-threads 2] [--message-delay 1]
     .venv/bin/python benchmarks/bench_et.py formation [--seeds 20] [--first-seed 0]
         [--shapes T,dumbbell,starfish] [--et NAME=VALUE ...]
-        [--jobs 2] [--et NAME=VALUE ...]
+        [--jobs 2] [--et NAME=VALUE ...] [--out runs.jsonl]
     .venv/bin/python benchmarks/bench_et.py hash [--seconds 600] [--threads 2] [--control-threads 2]
         [--shapes T,disc1000] [--hash-seeds 0,1] [--layout queue] [--damage SPEC]
 
@@ -33,13 +33,14 @@ from __future__ import annotations
 
 import argparse
 import hashlib
+import json
 import os
 import statistics
 import tempfile
 import time
 from concurrent.futures import ProcessPoolExecutor
 from pathlib import Path
-from typing import Any
+from typing import Any, TextIO
 
 import numpy as np
 
@@ -178,9 +179,11 @@ def parse_option(text: str) -> tuple[str, Any]:
 
 def formation(
     seeds: int, shapes: list[str], max_time_s: float, jobs: int, et_options: dict[str, Any],
-    first_seed: int = 0, sim: SimParams | None = None,
+    first_seed: int = 0, sim: SimParams | None = None, out: TextIO | None = None,
 ) -> None:
-    """Formation figures over seeds ``first_seed .. first_seed + seeds - 1`` of each shape."""
+    """Formation figures over seeds ``first_seed .. first_seed + seeds - 1`` of each shape;
+    with ``out``, every run's JSON summary too, one line each (shape by shape, seed order).
+    "false alarms": runs in which an election kept the target (``false_alarm``)."""
     print(
         f"load average {os.getloadavg()}, {jobs} job(s), ET options {et_options or 'default'}, "
         f"seeds {first_seed}-{first_seed + seeds - 1}, "
@@ -196,12 +199,15 @@ def formation(
         }
     print(
         f"{'shape':>10} {'formed':>8} {'median sim (min)':>17} {'median wall (s)':>16} "
-        f"{'median jaccard':>15} {'shared tags':>12}"
+        f"{'median jaccard':>15} {'shared tags':>12} {'false alarms':>13}"
     )
     for shape in shapes:
-        times, walls, jac, formed, shared = [], [], [], 0, 0
+        times, walls, jac, formed, shared, kept = [], [], [], 0, 0, 0
         for seed in seed_range:
             s = futures[shape, seed].result()
+            if out is not None:
+                out.write(json.dumps(s) + "\n")
+            kept += any(e["kind"] == "target_kept" for e in s["events"])
             formed += s["formed"]
             if s["formed"]:
                 times.append(s["formation_time_s"] / 60)
@@ -211,8 +217,10 @@ def formation(
         med = f"{statistics.median(times):.1f}" if times else "-"
         print(
             f"{shape:>10} {formed:>4}/{seeds:<3} {med:>17} {statistics.median(walls):>16.1f} "
-            f"{statistics.median(jac):>15.3f} {shared:>12}"
+            f"{statistics.median(jac):>15.3f} {shared:>12} {kept:>13}"
         )
+        if out is not None:
+            out.flush()
 
 
 def main() -> None:
@@ -242,6 +250,10 @@ def main() -> None:
         "--et", type=parse_option, action="append", default=[], metavar="NAME=VALUE",
         help="An ETParams field for every formation run, e.g. pair_aim_mm=-1 (repeatable).",
     )
+    parser.add_argument(
+        "--out", type=argparse.FileType("a"), default=None, metavar="FILE",
+        help="formation: also append every run's JSON summary to FILE (one line per run).",
+    )
     args = parser.parse_args()
     try:
         sim = SimParams(threads=args.threads, control_threads=args.control_threads,
@@ -257,7 +269,7 @@ def main() -> None:
     else:
         shapes = (args.shapes or "T,dumbbell,starfish").split(",")
         formation(args.seeds, shapes, args.max_time, args.jobs, dict(args.et), args.first_seed,
-                  sim)
+                  sim, args.out)
 
 
 if __name__ == "__main__":
