@@ -17,6 +17,7 @@ from etswarm.algorithm.pinch import (
     NOTCH_HELD,
     free_neighbours,
     narrow_mouth,
+    too_far_off,
     toward_free,
     would_pinch,
 )
@@ -81,6 +82,22 @@ def test_free_neighbours_are_those_nobody_is_known_to_hold() -> None:
 def test_a_capture_deep_into_a_free_site_is_refused(into: float, limit: float,
                                                     expected: bool) -> None:
     assert pinches(into, limit) is expected
+
+
+@pytest.mark.parametrize(("into", "limit", "expected"), [
+    (20.0, 18.0, True),   # half a spacing off: most of the way to the next site
+    (12.0, 18.0, False),
+    (20.0, 0.0, False),   # the rule off (the default)
+])
+def test_a_capture_far_off_the_centre_is_refused_in_any_direction(
+    into: float, limit: float, expected: bool
+) -> None:
+    ci, cf = ETParams(capture_offset_mm=limit).pack(31, -3, -3)
+    nb, nb_dist = confirming(into)
+    assert bool(too_far_off(0, 0, 0, 5, nb, nb_dist, ci, cf)) is expected
+    remembered = EMPTY_MEMORY.copy()
+    remembered[DIR_X[0] + 4, DIR_Y[0] + 4] = 1  # no free site next to it: no pinch ...
+    assert not pinches(into, 10.0, remembered)  # ... but still far off its centre
 
 
 def test_a_capture_next_to_no_free_site_is_never_refused() -> None:

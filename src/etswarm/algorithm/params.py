@@ -88,7 +88,8 @@ F_REGROW_WIDEN_TICKS = 23  # F_WIDEN_TICKS while a searcher works for a regenera
 F_TWO_WIDEN_TICKS = 24  # after this long at the shape a two-neighbour site gets the wide window
 F_CAPTURE_MOUTH = 25  # no capture reading the robot across a free site nearer than this
 F_REGROW_TWO_WIDEN_TICKS = 26  # F_TWO_WIDEN_TICKS while a searcher works for a regenerated target
-N_CF = 27
+F_CAPTURE_OFFSET = 27  # no capture from this far (mm) or more off the site's centre
+N_CF = 28
 
 #: The DESIGN section 2 robot: 7 mm/s, 13 deg/s, legs at 125.5 deg, radius 16.5 mm.
 NOMINAL_MOTION = (7.0, 13.0, 125.5, 16.5)
@@ -129,7 +130,7 @@ NON_NEGATIVE: frozenset[str] = frozenset(
         "regrowth_hover_s", "regrowth_crowded_s", "regrowth_dive_mm",
         "dive_mm", "held_gossip_every", "queue_rank_wait_s", "capture_pinch_mm",
         "capture_pinch_refusals", "regrowth_pinch_refusals", "two_neighbour_widen_s",
-        "regrowth_two_neighbour_widen_s", "capture_mouth_mm",
+        "regrowth_two_neighbour_widen_s", "capture_mouth_mm", "capture_offset_mm",
     }
 )
 #: Parameters that may take any sign.
@@ -361,6 +362,10 @@ class ETParams:
     #: neighbour held (``pinch``); 0: it takes any site its window confirms. First
     #: formations, 13 shapes, seeds 30-89: 753 of 780 formed against 739 with 0.
     capture_pinch_mm: float = 10.0
+    #: ... nor when that estimate puts it this far (mm) or more from the site's centre in
+    #: any direction (a capture half a spacing off is most of the way to another site);
+    #: 0: no such limit. Both refusals share one count (``capture_pinch_refusals``).
+    capture_offset_mm: float = 0.0
     #: ... nor when it reads the placed robot across such a free site (two steps away
     #: through it) nearer than this (mm): the two would leave the free site a mouth too
     #: narrow for a body (ideal 2 d = 80 mm; two 33 mm bodies need 66); 0: no such test.
@@ -522,6 +527,7 @@ class ETParams:
         cf[F_WALK_COLLECT] = self.census_collect_mm
         cf[F_OFFSET_TRUST] = self.offset_trust
         cf[F_CAPTURE_PINCH] = self.capture_pinch_mm
+        cf[F_CAPTURE_OFFSET] = self.capture_offset_mm
         cf[F_CAPTURE_MOUTH] = self.capture_mouth_mm
         ci[C_PINCH_REFUSALS] = self.capture_pinch_refusals
         ci[C_REGROW_PINCH_REFUSALS] = self.regrowth_pinch_refusals

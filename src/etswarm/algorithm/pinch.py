@@ -45,12 +45,20 @@ Measured over 13 shapes, seeds 30-49 (4 h limit; the defaults before formed 241 
 
 from __future__ import annotations
 
+import math
+
 from numba import njit
 
 from etswarm.algorithm.kernel_util import DIR_X, DIR_Y, direction_index, gene_at, is_placed
 from etswarm.algorithm.memory import NB_ID, NB_LAST, NB_STATE, NB_TX, NB_TY
 from etswarm.algorithm.offsets import locate, site_x, site_y
-from etswarm.algorithm.params import C_OFFSETS, F_CAPTURE_MOUTH, F_CAPTURE_PINCH, F_SPACING
+from etswarm.algorithm.params import (
+    C_OFFSETS,
+    F_CAPTURE_MOUTH,
+    F_CAPTURE_OFFSET,
+    F_CAPTURE_PINCH,
+    F_SPACING,
+)
 from etswarm.algorithm.site_memory import is_held, site_taken
 
 #: A free neighbour site counts when this many of its neighbour sites are held once the
@@ -124,6 +132,21 @@ def narrow_mouth(i, cx, cy, since, free_mask, nb, nb_dist, cf):  # type: ignore[
         if k >= 0 and (free_mask >> k) & 1:
             return True
     return False
+
+
+@njit
+def too_far_off(i, cx, cy, since, nb, nb_dist, ci, cf):  # type: ignore[no-untyped-def]
+    """Robot i, confirming site (cx, cy) on readings since ``since``, stands
+    ``capture_offset_mm`` or more from the site's centre by its own estimate. False with
+    the rule off, with offsets off, or when it cannot locate itself."""
+    limit = cf[F_CAPTURE_OFFSET]
+    if limit <= 0.0 or ci[C_OFFSETS] == 0:
+        return False
+    d = cf[F_SPACING]
+    x0 = site_x(cx, cy, d)
+    y0 = site_y(cy, d)
+    ok, x, y = locate(i, since, x0, y0, nb, nb_dist, d)
+    return ok and math.hypot(x - x0, y - y0) >= limit
 
 
 @njit

@@ -124,7 +124,7 @@ from etswarm.algorithm.params import (
     F_WIDEN_TICKS,
     F_YIELD_DIST,
 )
-from etswarm.algorithm.pinch import would_pinch
+from etswarm.algorithm.pinch import too_far_off, would_pinch
 from etswarm.algorithm.pocket import POCKET_AFTER_TICKS, pocket_site
 from etswarm.algorithm.site_memory import is_held, remember_heard, shuts_in, site_taken
 
@@ -799,9 +799,12 @@ def search_rule(  # type: ignore[no-untyped-def]
             same
             and ri[i, R_PINCH_REFUSED]
             < (ci[C_PINCH_REFUSALS] if first_growth(i, ri) else ci[C_REGROW_PINCH_REFUSALS])
-            and would_pinch(i, cx, cy, since, nb, nb_dist, gene_flag, ci, cf, held_i, ox, oy)
+            and (
+                would_pinch(i, cx, cy, since, nb, nb_dist, gene_flag, ci, cf, held_i, ox, oy)
+                or too_far_off(i, cx, cy, since, nb, nb_dist, ci, cf)
+            )
         ):
-            same = False  # from here it would narrow a free site: it moves on
+            same = False  # from here it would narrow a free site, or stands far off: it moves on
             ri[i, R_PINCH_REFUSED] += 1
         if same:
             set_state(i, ri, INACTIVE, tick)
