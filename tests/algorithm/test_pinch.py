@@ -92,9 +92,9 @@ def test_a_capture_deep_into_a_free_site_is_refused(into: float, limit: float,
 def test_a_capture_far_off_the_centre_is_refused_in_any_direction(
     into: float, limit: float, expected: bool
 ) -> None:
-    ci, cf = ETParams(capture_offset_mm=limit).pack(31, -3, -3)
+    ci, cf = ETParams().pack(31, -3, -3)
     nb, nb_dist = confirming(into)
-    assert bool(too_far_off(0, 0, 0, 5, nb, nb_dist, ci, cf)) is expected
+    assert bool(too_far_off(0, 0, 0, 5, nb, nb_dist, ci, cf, limit)) is expected
     remembered = EMPTY_MEMORY.copy()
     remembered[DIR_X[0] + 4, DIR_Y[0] + 4] = 1  # no free site next to it: no pinch ...
     assert not pinches(into, 10.0, remembered)  # ... but still far off its centre

@@ -55,7 +55,6 @@ from etswarm.algorithm.offsets import locate, site_x, site_y
 from etswarm.algorithm.params import (
     C_OFFSETS,
     F_CAPTURE_MOUTH,
-    F_CAPTURE_OFFSET,
     F_CAPTURE_PINCH,
     F_SPACING,
 )
@@ -135,11 +134,11 @@ def narrow_mouth(i, cx, cy, since, free_mask, nb, nb_dist, cf):  # type: ignore[
 
 
 @njit
-def too_far_off(i, cx, cy, since, nb, nb_dist, ci, cf):  # type: ignore[no-untyped-def]
-    """Robot i, confirming site (cx, cy) on readings since ``since``, stands
-    ``capture_offset_mm`` or more from the site's centre by its own estimate. False with
-    the rule off, with offsets off, or when it cannot locate itself."""
-    limit = cf[F_CAPTURE_OFFSET]
+def too_far_off(i, cx, cy, since, nb, nb_dist, ci, cf, limit):  # type: ignore[no-untyped-def]
+    """Robot i, confirming site (cx, cy) on readings since ``since``, stands ``limit`` mm or
+    more from the site's centre by its own estimate (``capture_offset_mm``, or
+    ``regrowth_capture_offset_mm`` for a regenerated target). False with the rule off
+    (``limit`` 0), with offsets off, or when it cannot locate itself."""
     if limit <= 0.0 or ci[C_OFFSETS] == 0:
         return False
     d = cf[F_SPACING]

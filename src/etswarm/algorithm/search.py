@@ -106,6 +106,7 @@ from etswarm.algorithm.params import (
     C_TICKS_YIELD_MAX,
     F_AIM_RELAX,
     F_BALANCE_TOL,
+    F_CAPTURE_OFFSET,
     F_CLEARANCE,
     F_CLOSING,
     F_CONSIST_TOL,
@@ -115,6 +116,7 @@ from etswarm.algorithm.params import (
     F_FOLLOW_OFFSET,
     F_PAIR_AIM,
     F_PAIR_TOL,
+    F_REGROW_CAPTURE_OFFSET,
     F_REGROW_TWO_WIDEN_TICKS,
     F_REGROW_WIDEN_TICKS,
     F_SETTLE_SCALE,
@@ -795,13 +797,15 @@ def search_rule(  # type: ignore[no-untyped-def]
             )
             same = found and cx == ri[i, R_CAND_X] and cy == ri[i, R_CAND_Y]
             same = same and not reported_but_unheard(i, cx, cy, since, nb)
+        first = first_growth(i, ri)
+        capture_offset = cf[F_CAPTURE_OFFSET] if first else cf[F_REGROW_CAPTURE_OFFSET]
         if (
             same
             and ri[i, R_PINCH_REFUSED]
-            < (ci[C_PINCH_REFUSALS] if first_growth(i, ri) else ci[C_REGROW_PINCH_REFUSALS])
+            < (ci[C_PINCH_REFUSALS] if first else ci[C_REGROW_PINCH_REFUSALS])
             and (
                 would_pinch(i, cx, cy, since, nb, nb_dist, gene_flag, ci, cf, held_i, ox, oy)
-                or too_far_off(i, cx, cy, since, nb, nb_dist, ci, cf)
+                or too_far_off(i, cx, cy, since, nb, nb_dist, ci, cf, capture_offset)
             )
         ):
             same = False  # from here it would narrow a free site, or stands far off: it moves on
