@@ -52,12 +52,7 @@ from numba import njit
 from etswarm.algorithm.kernel_util import DIR_X, DIR_Y, direction_index, gene_at, is_placed
 from etswarm.algorithm.memory import NB_ID, NB_LAST, NB_STATE, NB_TX, NB_TY
 from etswarm.algorithm.offsets import locate, site_x, site_y
-from etswarm.algorithm.params import (
-    C_OFFSETS,
-    F_CAPTURE_MOUTH,
-    F_CAPTURE_PINCH,
-    F_SPACING,
-)
+from etswarm.algorithm.params import C_OFFSETS, F_CAPTURE_MOUTH, F_CAPTURE_PINCH, F_SPACING
 from etswarm.algorithm.site_memory import is_held, site_taken
 
 #: A free neighbour site counts when this many of its neighbour sites are held once the
