@@ -773,13 +773,14 @@ def search_rule(  # type: ignore[no-untyped-def]
         came = ri[i, R_FROM_ID]
         since = ri[i, R_SUB_SINCE]
         orbit = ri[i, R_ORBIT]
+        first = first_growth(i, ri)
         wide_min = wide_minimum(at_shape, ri[i, R_GROWTH], cf)
         found, cx, cy, min_ts = find_site(
             i, tick, since, True, ref, came, orbit, nb, nb_dist, gene_flag, ci, cf, widen,
             wide_min, held_i, ox, oy, pair_aim, cf[F_SETTLE_SCALE],
         )
         same = found and cx == ri[i, R_CAND_X] and cy == ri[i, R_CAND_Y]
-        retries = ci[C_SETTLE_RETRIES] if first_growth(i, ri) else ci[C_REGROW_RETRIES]
+        retries = ci[C_SETTLE_RETRIES] if first else ci[C_REGROW_RETRIES]
         if not same and ri[i, R_SETTLE_TRIES] < retries:
             # Noisy readings may have missed the window: stand on with fresh ones while
             # the candidate is still near.
@@ -797,7 +798,6 @@ def search_rule(  # type: ignore[no-untyped-def]
             )
             same = found and cx == ri[i, R_CAND_X] and cy == ri[i, R_CAND_Y]
             same = same and not reported_but_unheard(i, cx, cy, since, nb)
-        first = first_growth(i, ri)
         capture_offset = cf[F_CAPTURE_OFFSET] if first else cf[F_REGROW_CAPTURE_OFFSET]
         if (
             same
