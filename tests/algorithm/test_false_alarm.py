@@ -47,6 +47,8 @@ from etswarm.algorithm.memory import (
     R_TS,
     R_TSLOT,
     SLOT_SHAPE,
+    SLOT_WX,
+    SLOT_WY,
 )
 from etswarm.algorithm.params import ETParams
 from etswarm.algorithm.placed import placed_rule
@@ -165,7 +167,10 @@ def stable_centre(heard_dirs: tuple[int, ...]) -> ETController:
 def seconds_to_election(ctl: ETController, seconds: float) -> float | None:
     for tick in range(1, round(seconds * TPS)):
         ctl.nb[0, :, NB_LAST] = tick
-        placed_rule(0, tick, ctl.ri, ctl.nb, ctl.nb_dist, ctl.gene_flag[0], ctl.ci, ctl.cf)
+        placed_rule(
+            0, tick, ctl.ri, ctl.nb, ctl.nb_dist, ctl.gene_flag[0], ctl.ci, ctl.cf,
+            ctl.held[0], ctl.slot_info[0, SLOT_WX], ctl.slot_info[0, SLOT_WY],
+        )
         if ctl.ri[0, R_PHASE] == PHASE_ELECTING:
             return tick / TPS
     return None

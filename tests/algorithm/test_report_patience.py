@@ -37,6 +37,8 @@ FAR_DIR = 3
 REPORTER_DIR = 2
 #: The gene's flags round (0, 0) (grid origin (-2, -2), as packed below): all sites.
 GENE = np.ones((5, 5), dtype=np.uint8)
+#: Robot 0's memory of held sites (empty; window origin as the gene's).
+NO_MEMORY = np.zeros((5, 5), dtype=np.uint8)
 
 
 def stable_robot() -> tuple[np.ndarray, np.ndarray, np.ndarray]:
@@ -71,7 +73,7 @@ def ticks_to_election(drop: str, patience: str) -> int:
                 nb[0, slot, NB_LAST] = tick
         if lost and drop == "report":
             nb[0, HEARD.index(REPORTER_DIR), NB_MASK] = 0
-        placed_rule(0, tick, ri, nb, nb_dist, GENE, ci, cf)
+        placed_rule(0, tick, ri, nb, nb_dist, GENE, ci, cf, NO_MEMORY, -2, -2)
         if ri[0, R_PHASE] == PHASE_ELECTING:
             return tick - 2 * TPS
     return -1
@@ -82,7 +84,7 @@ def test_the_count_includes_the_reported_neighbour() -> None:
     ci, cf = ETParams().pack(TPS, gene_x0=-2, gene_y0=-2)
     for slot in range(len(HEARD)):
         nb[0, slot, NB_LAST] = 1
-    placed_rule(0, 1, ri, nb, nb_dist, GENE, ci, cf)
+    placed_rule(0, 1, ri, nb, nb_dist, GENE, ci, cf, NO_MEMORY, -2, -2)
     assert ri[0, R_STATE] == STABLE and ri[0, R_PHASE] != PHASE_ELECTING
 
 

@@ -626,7 +626,10 @@ def et_part(  # type: ignore[no-untyped-def]
             idle[i] = wake
         elif INACTIVE <= state <= STABLE:
             motor[i] = STOP
-            placed_rule(i, tick, ri, nb, nb_dist, gene_flag[slot], ci, cf)
+            placed_rule(
+                i, tick, ri, nb, nb_dist, gene_flag[slot], ci, cf, held[i],
+                slot_info[slot, SLOT_WX], slot_info[slot, SLOT_WY],
+            )
             # (a no-op once placed_rule has started an election: it acts in the normal phase)
             contact_rule(i, tick, ri, nb, nb_dist, gene_flag[slot], ci)
             if (

@@ -201,7 +201,10 @@ R_RESUMED_AT = R_EXCUSED + 1
 #: adopted a new target, kept when it resumed after a false alarm. 0 while it still works
 #: on the first formation, whatever elections were false alarms (``first_growth``).
 R_GROWTH = R_RESUMED_AT + 1
-R_FIELDS = R_GROWTH + 1
+#: Tick + 1 since which an Active (or Quasi) robot has missed only neighbour sites its
+#: memory of held sites knows held (0: not now; ``placed.remembered_dirs``).
+R_REMEMBERED_SINCE = R_GROWTH + 1
+R_FIELDS = R_REMEMBERED_SINCE + 1
 
 PHASE_NORMAL = 0
 PHASE_ELECTING = 1

@@ -58,7 +58,8 @@ C_REGROW_OFFSETS = 41  # REGROW_OFFSETS_*: what a robot kept on its site does wi
 C_AVOID_FOREIGN = 42  # 1: searchers ignore placed robots off their target (obstacles only)
 C_MERGE = 43  # 1: placed robots touching another remnant's shape start a joint election
 C_FALSE_ALARM = 44  # 1: an election whose census keeps the current target is a false alarm
-N_CI = 45
+C_TICKS_REMEMBERED = 45  # an Active robot missing only sites remembered held this long excuses them
+N_CI = 46
 
 F_SPACING = 0  # lattice spacing d
 F_PAIR_TOL = 1  # two references within this of d trigger a site candidate
@@ -132,7 +133,7 @@ NON_NEGATIVE: frozenset[str] = frozenset(
         "dive_mm", "held_gossip_every", "queue_rank_wait_s", "capture_pinch_mm",
         "capture_pinch_refusals", "regrowth_pinch_refusals", "two_neighbour_widen_s",
         "regrowth_two_neighbour_widen_s", "capture_mouth_mm", "capture_offset_mm",
-        "regrowth_capture_offset_mm",
+        "regrowth_capture_offset_mm", "remembered_neighbours_s",
     }
 )
 #: Parameters that may take any sign.
@@ -412,6 +413,14 @@ class ETParams:
     #: counts the neighbour sites it missed then as held (``regeneration.resume``).
     #: "regrow": every election regrows the shape from its seeds (the paper).
     false_alarm: str = "resume"
+    #: An Active robot that for this long (s) has missed only neighbour sites its memory
+    #: of held sites (``site_memory``, kept by gossip) knows held excuses them, as a robot
+    #: does after a false alarm, and turns Stable: their holders stand out of its range
+    #: where the lattice has torn, and without this it stays Active for good and the
+    #: shape never counts as formed (traced on starfish seed 274: every site held, two
+    #: robots 73-77 mm from lattice neighbours). Needs ``held_gossip_every`` > 0. 0: it
+    #: waits to hear them (the paper).
+    remembered_neighbours_s: float = 120.0
 
     def __post_init__(self) -> None:
         for f in fields(self):
@@ -503,6 +512,11 @@ class ETParams:
         ci[C_AVOID_FOREIGN] = 1 if self.foreign_robots == "avoid" else 0
         ci[C_MERGE] = 1 if self.merge_remnants == "on" else 0
         ci[C_FALSE_ALARM] = 1 if self.false_alarm == "resume" else 0
+        ci[C_TICKS_REMEMBERED] = (
+            ticks(self.remembered_neighbours_s)
+            if self.remembered_neighbours_s > 0 and ci[C_GOSSIP_EVERY] > 0
+            else 0
+        )
         ci[C_SETTLE_RETRIES] = self.settle_retries
         ci[C_REGROW_RETRIES] = self.regrowth_settle_retries
         ci[C_TICKS_HOVER] = round(self.regrowth_hover_s * ticks_per_s)

@@ -30,11 +30,13 @@ from etswarm.algorithm.memory import (
     R_COUNT,
     R_EPOCH,
     R_EXCUSED,
+    R_HELD_EPOCH,
     R_MASK,
     R_MISSING,
     R_NN,
     R_OFF_REFINE,
     R_QUASI_UNTIL,
+    R_REMEMBERED_SINCE,
     R_RESUMED_AT,
     R_SEEN_FULL,
     R_SINCE,
@@ -50,9 +52,11 @@ from etswarm.algorithm.params import (
     C_TICKS_NB_FRESH,
     C_TICKS_QUASI,
     C_TICKS_REGEN_QUIET,
+    C_TICKS_REMEMBERED,
     F_SPACING,
 )
 from etswarm.algorithm.regeneration import start_election
+from etswarm.algorithm.site_memory import is_held
 
 #: Inactive robots with no Active neighbour for this many evaluations become Active.
 INACTIVE_PATIENCE_TICKS = 31 * 60
@@ -107,9 +111,44 @@ def reported_dirs(i, tick, ri, nb, fresh, seen_dirs):  # type: ignore[no-untyped
 
 
 @njit
-def placed_rule(i, tick, ri, nb, nb_dist, gene, ci, cf):  # type: ignore[no-untyped-def]
+def remembered_dirs(i, missing, ri, held_i, ox, oy):  # type: ignore[no-untyped-def]
+    """``missing`` (bits k of robot i's neighbour sites) when every one of those sites is
+    in its memory of held sites ``held_i`` ((WX, WY) at tag (ox, oy), see ``site_memory``)
+    kept for its current epoch; else 0."""
+    if missing == 0 or ri[i, R_HELD_EPOCH] != ri[i, R_EPOCH] + 1:
+        return 0
+    x = ri[i, R_TAG_X]
+    y = ri[i, R_TAG_Y]
+    for k in range(6):
+        if (missing >> k) & 1 and not is_held(held_i, x + DIR_X[k], y + DIR_Y[k], ox, oy):
+            return 0
+    return missing
+
+
+@njit
+def excuse_remembered(i, tick, ri, missing, held_i, ox, oy, ci):  # type: ignore[no-untyped-def]
+    """An Active or Quasi robot i that misses neighbour sites ``missing`` (bits): when its
+    memory has known all of them held for ``C_TICKS_REMEMBERED`` ticks without a break and
+    it is Active, it excuses them (``R_EXCUSED``, as after a false alarm): their holders
+    stand out of its range. Keeps ``R_REMEMBERED_SINCE``; returns the bits excused now."""
+    if remembered_dirs(i, missing, ri, held_i, ox, oy) == 0:
+        ri[i, R_REMEMBERED_SINCE] = 0
+        return 0
+    if ri[i, R_REMEMBERED_SINCE] == 0:
+        ri[i, R_REMEMBERED_SINCE] = tick + 1
+        return 0
+    if ri[i, R_STATE] != ACTIVE or tick - (ri[i, R_REMEMBERED_SINCE] - 1) < ci[C_TICKS_REMEMBERED]:
+        return 0
+    ri[i, R_EXCUSED] |= missing
+    ri[i, R_REMEMBERED_SINCE] = 0
+    return missing
+
+
+@njit
+def placed_rule(i, tick, ri, nb, nb_dist, gene, ci, cf, held_i, ox, oy):  # type: ignore[no-untyped-def]
     """Inactive -> Active -> Quasi/Stable, and Stable -> Danger (paper Table 1); ``gene``
-    holds the gene flags of the robot's target (GX, GY)."""
+    holds the gene flags of the robot's target (GX, GY), ``held_i`` the robot's memory of
+    held sites ((WX, WY) at tag (ox, oy), see ``site_memory``)."""
     fresh = ci[C_TICKS_NB_FRESH]
     x = ri[i, R_TAG_X]
     y = ri[i, R_TAG_Y]
@@ -151,6 +190,11 @@ def placed_rule(i, tick, ri, nb, nb_dist, gene, ci, cf):  # type: ignore[no-unty
     if count < nn:
         known_dirs = seen_dirs | reported_dirs(i, tick, ri, nb, fresh, seen_dirs)
         count = bit_count(known_dirs | excused)
+        if ACTIVE <= state <= QUASI and count < nn and ci[C_TICKS_REMEMBERED] > 0:
+            # Holders its memory knows of but it cannot hear, for minutes: a torn lattice.
+            missing = gene_dirs(x, y, gene, ci) & ~(known_dirs | excused) & 63
+            excused |= excuse_remembered(i, tick, ri, missing, held_i, ox, oy, ci)
+            count = bit_count(known_dirs | excused)
     ri[i, R_COUNT] = count
     ri[i, R_MASK] = seen_dirs
     if state == STABLE:

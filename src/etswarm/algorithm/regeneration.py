@@ -93,6 +93,7 @@ from etswarm.algorithm.memory import (
     R_QMIN,
     R_QMIN_SINCE,
     R_RELEASED,
+    R_REMEMBERED_SINCE,
     R_REQUEST,
     R_RESUMED_AT,
     R_SEEN_FULL,
@@ -343,6 +344,7 @@ def adopt_target(i, tick, ri, nb, slot, epoch, leader, gene_flag, gene_nn, slot_
     ri[i, R_SEEN_FULL] = 0
     ri[i, R_MISSING] = 0
     ri[i, R_EXCUSED] = 0
+    ri[i, R_REMEMBERED_SINCE] = 0
     ri[i, R_RESUMED_AT] = 0
     x = ri[i, R_TAG_X]
     y = ri[i, R_TAG_Y]
@@ -391,6 +393,7 @@ def resume(i, tick, ri, before, electing, old):  # type: ignore[no-untyped-def]
         ri[i, R_SINCE] = ri[i, R_PRE_SINCE]
     ri[i, R_EXCUSED] |= ri[i, R_MISSING]
     ri[i, R_MISSING] = 0
+    ri[i, R_REMEMBERED_SINCE] = 0
     ri[i, R_RESUMED_AT] = tick + 1
     carry_memory(i, ri, old, ri[i, R_EPOCH])
 
