@@ -13,6 +13,7 @@ import numpy as np
 import pytest
 
 from etswarm.algorithm.homing import (
+    AHEAD_SHARE,
     ODO_PER_MM,
     ODO_PER_RAD,
     RING_MAX_MM,
@@ -109,32 +110,43 @@ def test_odometry_drifts_with_the_calibration_error_it_cannot_know() -> None:
     assert abs(travelled - odo_xy[0]) > 1.0  # its own speed is off by its calibration
 
 
-def circle_home(start_xy: tuple[float, float], path_mm: float) -> np.ndarray:
-    """A lone robot lost at home (0, 0) of its odometry, standing at ``start_xy`` (odometric
-    and true, mm, in its start frame), drives ``homing_motion`` until it has gone
-    ``path_mm`` by its odometry; return its true track (T, 2) in that frame."""
+def circle_home(
+    start_xy: tuple[float, float],
+    path_mm: float,
+    home_xy: tuple[float, float] = (0.0, 0.0),
+    ahead: bool = False,
+) -> np.ndarray:
+    """A lone robot lost at ``home_xy`` of its odometry (origin (0, 0): where it left the
+    repository), standing at ``start_xy`` (odometric and true, mm, in its start frame),
+    drives ``homing_motion`` (``ahead`` as given) until it has gone ``path_mm`` by its
+    odometry; return its true track (T, 2) in that frame and, in column 2, the path
+    (mm) it had gone since it got lost at each point."""
     params = SimParams()
     world, sim = lone_robot(params, heading=0.0)
     world.pos[0] += start_xy
     origin = world.pos[0] - start_xy
     ri, _, _ = allocate(1)
     reset_odometry(0, ri)
+    ri[0, R_ODO_X] = round(home_xy[0] * ODO_PER_MM)
+    ri[0, R_ODO_Y] = round(home_xy[1] * ODO_PER_MM)
+    note_home(0, ri)
     note_lost(0, ri)
     ri[0, R_ODO_X] = round(start_xy[0] * ODO_PER_MM)
     ri[0, R_ODO_Y] = round(start_xy[1] * ODO_PER_MM)
     cf = odometry_cf(params)
     track = []
     while (ri[0, R_ODO_PATH] - ri[0, R_LOST_PATH]) / ODO_PER_MM < path_mm:
-        command = homing_motion(0, ri)
+        command = homing_motion(0, ri, ahead)
         world.motor[0] = command
         sim.run_ticks(1)
         integrate(0, ri, command, cf)
-        track.append(world.pos[0] - origin)
+        gone = (ri[0, R_ODO_PATH] - ri[0, R_LOST_PATH]) / ODO_PER_MM
+        track.append((*(world.pos[0] - origin), gone))
     return np.array(track)
 
 
 def test_a_lost_robot_heads_home_from_afar() -> None:
-    track = circle_home((400.0, -250.0), path_mm=600.0)
+    track = circle_home((400.0, -250.0), path_mm=600.0)[:, :2]
     distance = np.hypot(*track.T)
     # straight back, then round home near the ring's radius
     assert distance[-1] < ring_radius(600.0) + 40.0
@@ -143,7 +155,7 @@ def test_a_lost_robot_heads_home_from_afar() -> None:
 
 def test_the_spiral_sweeps_every_point_round_home_within_radio_range() -> None:
     path = 12_000.0  # mm: a few laps
-    track = circle_home((0.0, 0.0), path_mm=path)
+    track = circle_home((0.0, 0.0), path_mm=path)[:, :2]
     reach = ring_radius(path) - 40.0
     assert reach > 250.0
     # every point of a grid within ``reach`` of home came within radio range (70 mm)
@@ -162,6 +174,56 @@ def test_the_spiral_sweeps_every_point_round_home_within_radio_range() -> None:
     assert last.max() < ring_radius(path) + 40.0
 
 
+def ring_errors(track: np.ndarray, home_xy: tuple[float, float], shifted: bool) -> np.ndarray:
+    """How far (mm) each point of ``track`` (T, 3: x, y, path since lost) is from the ring
+    it should keep: ``ring_radius(path)`` round home, moved on along home's direction
+    from the origin by AHEAD_SHARE of the path when ``shifted``."""
+    home = np.asarray(home_xy)
+    way = home / np.hypot(*home)
+    shift = AHEAD_SHARE * track[:, 2] if shifted else np.zeros(len(track))
+    centres = home[None, :] + shift[:, None] * way[None, :]
+    rho = np.hypot(*(track[:, :2] - centres).T)
+    return rho - np.array([ring_radius(p) for p in track[:, 2]])
+
+
+@pytest.mark.parametrize("ahead", [False, True])
+def test_a_searcher_lost_along_the_repository_moves_its_spiral_on(ahead: bool) -> None:
+    """Home 400 mm from where it left the repository, along +x: with ``ahead`` the
+    spiral's centre moves on along +x by AHEAD_SHARE of the path (800 mm here), else it
+    stays home; either way the robot keeps to its ring round that centre."""
+    home = (400.0, 0.0)
+    track = circle_home(home, path_mm=8000.0, home_xy=home, ahead=ahead)
+    late = track[len(track) // 2:]
+    assert np.abs(ring_errors(late, home, shifted=ahead)).max() < 40.0
+    # ... and not round the other centre
+    assert np.abs(ring_errors(late, home, shifted=not ahead)).max() > 200.0
+
+
+def test_no_spiral_moves_on_from_a_home_next_to_the_repository() -> None:
+    """Lost within AHEAD_MIN_MM of where it left: no known way on, so it circles home."""
+    home = (50.0, 0.0)
+    track = circle_home(home, path_mm=6000.0, home_xy=home, ahead=True)
+    late = track[len(track) // 2:]
+    assert np.abs(ring_errors(late, home, shifted=False)).max() < 40.0
+
+
+@pytest.mark.parametrize("homing", ["on", "ahead"])
+def test_square_seed_228_waits_for_a_searcher_lost_along_the_repository(homing: str) -> None:
+    """Traced on square seed 228 (fresh seeds of session 29): searcher 15 was shoved out of
+    earshot while yielding along the repository, before it heard the shape. By the time
+    it had circled the place where it last heard a Queued robot, they had all left, and
+    that place is 1.2 m from the shape: with "on" it circles there for good and the
+    square stays one robot short; with "ahead" its spiral moves on along the way it was
+    going and it finds the shape."""
+    run = ETRun(RunConfig(shape="square", seed=228, max_time_s=4 * 3600,
+                          et=ETParams(lost_homing=homing)))
+    summary = run.run()
+    assert summary["formed"] == (homing == "ahead")
+    assert not summary["duplicate_tags"]
+    if homing == "on":
+        assert summary["states"]["Search"] == 1
+
+
 def test_the_spiral_starts_again_from_home_past_a_metre() -> None:
     radii = [ring_radius(p) for p in np.arange(0.0, 80_000.0, 100.0)]
     assert max(radii) <= RING_MAX_MM
@@ -178,12 +240,12 @@ def test_home_is_where_it_last_heard_the_group() -> None:
     ri[0, R_ODO_X] = 205 * ODO_PER_MM  # 200 mm on, facing away (+x)
     note_lost(0, ri)
     # far out, facing away from home: it pivots to turn round
-    assert homing_motion(0, ri) in (LEFT, RIGHT)
+    assert homing_motion(0, ri, False) in (LEFT, RIGHT)
     ri[0, R_ODO_H] = round(math.pi * ODO_PER_RAD)  # facing home
-    assert homing_motion(0, ri) == FORWARD
+    assert homing_motion(0, ri, False) == FORWARD
     ri[0, R_ODO_H] = round(0.5 * math.pi * ODO_PER_RAD)  # facing +y: home on its right
     note_home(0, ri)  # ... but now home is here, and the ring is 50 mm out
-    assert homing_motion(0, ri) in (LEFT, RIGHT)
+    assert homing_motion(0, ri, False) in (LEFT, RIGHT)
 
 
 @pytest.mark.parametrize("homing", ["on", "off"])

@@ -5,7 +5,15 @@ from __future__ import annotations
 import pytest
 from click.testing import CliRunner
 
-from etswarm.algorithm.params import F_PAIR_AIM, F_WIDEN_MAX, ETParams, parse_et_option
+from etswarm.algorithm.params import (
+    C_LOST_HOMING,
+    F_PAIR_AIM,
+    F_WIDEN_MAX,
+    LOST_HOMING_AHEAD,
+    LOST_HOMING_ON,
+    ETParams,
+    parse_et_option,
+)
 from etswarm.cli.run_command import run as run_command
 from etswarm.errors import EtswarmError
 
@@ -40,6 +48,15 @@ def test_signed_and_bounded_fields() -> None:
         ETParams(widen_max=0.5)
     with pytest.raises(EtswarmError, match="pair_tol_mm must be > 0"):
         ETParams(pair_tol_mm=-1.0)
+
+
+def test_lost_homing_takes_three_modes() -> None:
+    modes = ("off", "on", "ahead")
+    codes = [ETParams(lost_homing=m).pack(31, 0, 0)[0][C_LOST_HOMING] for m in modes]
+    assert codes == [0, LOST_HOMING_ON, LOST_HOMING_AHEAD]
+    with pytest.raises(EtswarmError, match="lost_homing must be one of") as err:
+        ETParams(lost_homing="forward")
+    assert "\n" not in str(err.value)
 
 
 def test_the_run_command_takes_et_options() -> None:

@@ -59,6 +59,15 @@ RING_MAX_MM = 1000.0
 RING_BAND_MM = 30.0
 #: Heading errors under this (rad) drive forward; larger ones pivot.
 AIM_TOLERANCE_RAD = math.radians(20.0)
+#: ``lost_homing = "ahead"``: a searcher lost on its way along the repository moves the
+#: spiral's centre on from home, away from where it left the repository, by this share
+#: of its path since it got lost (mm per mm): about a lap's worth of ring spacing per
+#: lap of 1 m, so the widening spiral sweeps a band along the repository's line. The
+#: shift starts again with the spiral (``RING_MAX_MM``), after about 3 m.
+AHEAD_SHARE = 0.1
+#: ... but only when home is at least this far (mm) from where it left the repository:
+#: nearer, the way it was going is not known.
+AHEAD_MIN_MM = 100.0
 
 
 @njit
@@ -133,13 +142,20 @@ def ring_radius(path_mm):  # type: ignore[no-untyped-def]
     """
     grow = RING_SPACING_MM / math.pi
     start2 = RING_START_MM * RING_START_MM
-    one_spiral = (RING_MAX_MM * RING_MAX_MM - start2) / grow  # mm of path
-    return math.sqrt(start2 + grow * (path_mm % one_spiral))
+    return math.sqrt(start2 + grow * (path_mm % spiral_path()))
+
+
+@njit(inline="always")
+def spiral_path():  # type: ignore[no-untyped-def]
+    """Path (mm) of one spiral, from ``RING_START_MM`` to ``RING_MAX_MM``."""
+    start2 = RING_START_MM * RING_START_MM
+    return (RING_MAX_MM * RING_MAX_MM - start2) * math.pi / RING_SPACING_MM
 
 
 @njit
-def homing_motion(i, ri):  # type: ignore[no-untyped-def]
-    """Motor command of lost robot i, circling home.
+def homing_motion(i, ri, ahead):  # type: ignore[no-untyped-def]
+    """Motor command of lost robot i, circling home (with ``ahead``, a point moved on from
+    home away from the odometric origin, ``AHEAD_SHARE``).
 
     It steers for the clockwise tangent of the ring of radius ``ring_radius`` round home,
     turned towards home (or away) by up to 90 degrees as its odometric distance from home
@@ -150,9 +166,17 @@ def homing_motion(i, ri):  # type: ignore[no-untyped-def]
     dx = (ri[i, R_ODO_X] - ri[i, R_HOME_X]) / ODO_PER_MM
     dy = (ri[i, R_ODO_Y] - ri[i, R_HOME_Y]) / ODO_PER_MM
     h = ri[i, R_ODO_H] / ODO_PER_RAD
+    path = (ri[i, R_ODO_PATH] - ri[i, R_LOST_PATH]) / ODO_PER_MM
+    if ahead:
+        hx = ri[i, R_HOME_X] / ODO_PER_MM
+        hy = ri[i, R_HOME_Y] / ODO_PER_MM
+        away = math.hypot(hx, hy)
+        if away >= AHEAD_MIN_MM:
+            shift = AHEAD_SHARE * (path % spiral_path())
+            dx -= shift * hx / away
+            dy -= shift * hy / away
     rho = math.hypot(dx, dy)
     outward = math.atan2(dy, dx)
-    path = (ri[i, R_ODO_PATH] - ri[i, R_LOST_PATH]) / ODO_PER_MM
     error = (rho - ring_radius(path)) / RING_BAND_MM
     inward = 0.5 * math.pi * max(-1.0, min(1.0, error))
     course = outward - 0.5 * math.pi - inward

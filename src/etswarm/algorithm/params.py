@@ -50,7 +50,7 @@ C_GOSSIP_EVERY = 33  # placed robots send a chunk of their held-site memory ever
 C_TICKS_RANK_WAIT = 34  # a Queued robot waits for its queue rank at most this long (0: off)
 C_EXTENT = 35  # 1: electing robots flood the remnant's extent for the scaled shape's placement
 C_OFFSETS = 36  # 1: placed robots estimate and send their offset from their site (``offsets``)
-C_LOST_HOMING = 37  # 1: a lost searcher circles where it last heard the group (``homing``)
+C_LOST_HOMING = 37  # LOST_HOMING_* code: how a lost searcher looks for the group (``homing``)
 C_REPORT_PATIENCE = 38  # 1: a Stable robot waits longer for neighbours it only knew by report
 C_PINCH_REFUSALS = 39  # a searcher refuses at most this many sites that would pinch a free one
 C_REGROW_PINCH_REFUSALS = 40  # the same while it searches for a regenerated target
@@ -110,6 +110,11 @@ PLACEMENTS = ("extent", "local")
 FOREIGN_MODES = ("avoid", "follow")
 #: Which seed triangle a Leader's placement may use (``ETParams.placement_seeds``).
 PLACEMENT_SEEDS = ("leader", "any", "silent")
+#: How a lost searcher looks for the group (``ETParams.lost_homing``), in the order of
+#: their codes in ``ci``.
+LOST_HOMING_MODES = ("off", "on", "ahead")
+LOST_HOMING_ON = 1
+LOST_HOMING_AHEAD = 2
 #: What an election whose census keeps the current target does (``ETParams.false_alarm``).
 FALSE_ALARM_MODES = ("resume", "regrow")
 #: The allowed values of each ETParams field that takes one of a few names.
@@ -122,6 +127,7 @@ CHOICES: dict[str, tuple[str, ...]] = {
     "release_order": ("far", "id"),
     "orbit": ORBIT_MODES,
     "false_alarm": FALSE_ALARM_MODES,
+    "lost_homing": LOST_HOMING_MODES,
 }
 
 
@@ -352,7 +358,11 @@ class ETParams:
     #: "on": a lost searcher, once its pivot on the spot has not found the group, circles
     #: the place where it last heard a stationary robot on a widening spiral, steering by
     #: its odometry (``homing``). "off": it drives a fixed widening spiral of commands,
-    #: whose centre every turn away from another robot moves.
+    #: whose centre every turn away from another robot moves. "ahead": as "on", but a
+    #: searcher of the first formation that got lost before it ever heard a placed robot
+    #: (on its way along the repository) moves the spiral's centre on from that place,
+    #: away from where it left the repository: the robots it heard there have since left
+    #: and the shape lies on along the way it was going (``homing.AHEAD_SHARE``).
     lost_homing: str = "on"
     #: "on": a Stable robot whose count falls short only by neighbours it knew of through
     #: their neighbours' reports (it did not hear them itself at its last complete count)
@@ -432,7 +442,7 @@ class ETParams:
                     )
             elif f.name in (
                 "creep", "second_ring", "hole_memory", "fill_lookahead", "pocket", "queue_stride",
-                "silent_sites", "lost_beacon", "lost_yield", "site_offsets", "lost_homing",
+                "silent_sites", "lost_beacon", "lost_yield", "site_offsets",
                 "report_patience", "merge_remnants",
             ):
                 if value not in ("on", "off"):
@@ -502,7 +512,7 @@ class ETParams:
         # the placement over the extent counts the sites remembered held: gossip keeps them
         ci[C_EXTENT] = 1 if self.placement == "extent" and ci[C_GOSSIP_EVERY] > 0 else 0
         ci[C_OFFSETS] = 1 if self.site_offsets == "on" else 0
-        ci[C_LOST_HOMING] = 1 if self.lost_homing == "on" else 0
+        ci[C_LOST_HOMING] = LOST_HOMING_MODES.index(self.lost_homing)
         ci[C_REPORT_PATIENCE] = 1 if self.report_patience == "on" else 0
         ci[C_QUEUE_STRIDE] = 1 if self.queue_stride == "on" else 0
         ci[C_SILENT_SITES] = 1 if self.silent_sites == "on" else 0

@@ -125,6 +125,8 @@ from etswarm.algorithm.params import (
     F_WIDEN_MAX,
     F_WIDEN_TICKS,
     F_YIELD_DIST,
+    LOST_HOMING_AHEAD,
+    LOST_HOMING_ON,
 )
 from etswarm.algorithm.pinch import too_far_off, would_pinch
 from etswarm.algorithm.pocket import POCKET_AFTER_TICKS, pocket_site
@@ -928,8 +930,14 @@ def search_rule(  # type: ignore[no-untyped-def]
         motor[i] = toward
     elif lost:
         lost_for = tick - (ri[i, R_LOST_SINCE] - 1)
-        if ci[C_LOST_HOMING] == 1 and lost_for >= LOST_PIVOT_TICKS:
-            motor[i] = homing_motion(i, ri)
+        if ci[C_LOST_HOMING] >= LOST_HOMING_ON and lost_for >= LOST_PIVOT_TICKS:
+            # lost on its way along the repository: the shape lies on beyond home
+            ahead = (
+                ci[C_LOST_HOMING] == LOST_HOMING_AHEAD
+                and ri[i, R_GROWTH] == 0
+                and ri[i, R_SHAPE_SINCE] == 0
+            )
+            motor[i] = homing_motion(i, ri, ahead)
         else:
             motor[i] = lost_motion(tick, ri[i, R_LOST_SINCE] - 1)
     elif tick - ri[i, R_TOWARD_SINCE] > CIRCLING_TICKS and ri[i, R_REF_TREND] < 0:
