@@ -91,7 +91,8 @@ F_CAPTURE_MOUTH = 25  # no capture reading the robot across a free site nearer t
 F_REGROW_TWO_WIDEN_TICKS = 26  # F_TWO_WIDEN_TICKS while a searcher works for a regenerated target
 F_CAPTURE_OFFSET = 27  # no capture from this far (mm) or more off the site's centre
 F_REGROW_CAPTURE_OFFSET = 28  # F_CAPTURE_OFFSET while a searcher works for a regenerated target
-N_CF = 29
+F_PINCH_PATIENCE = 29  # ticks at the shape after which a searcher refuses no more pinching sites
+N_CF = 30
 
 #: The DESIGN section 2 robot: 7 mm/s, 13 deg/s, legs at 125.5 deg, radius 16.5 mm.
 NOMINAL_MOTION = (7.0, 13.0, 125.5, 16.5)
@@ -137,6 +138,7 @@ NON_NEGATIVE: frozenset[str] = frozenset(
         "pair_aim_relax_s", "settle_retries", "regrowth_settle_retries", "release_hold_s",
         "regrowth_hover_s", "regrowth_crowded_s", "regrowth_dive_mm",
         "dive_mm", "held_gossip_every", "queue_rank_wait_s", "capture_pinch_mm",
+        "pinch_patience_s",
         "capture_pinch_refusals", "regrowth_pinch_refusals", "two_neighbour_widen_s",
         "regrowth_two_neighbour_widen_s", "capture_mouth_mm", "capture_offset_mm",
         "regrowth_capture_offset_mm", "remembered_neighbours_s",
@@ -390,6 +392,10 @@ class ETParams:
     #: taking one: where the lattice is stretched every capture may stand far off. 4
     #: since session 20, when windows widen three times faster (``widen_s``).
     capture_pinch_refusals: int = 4
+    #: A searcher this long (s) at the shape refuses no more sites for the pinch guard
+    #: (``capture_pinch_mm``, ``capture_mouth_mm``) or ``capture_offset_mm``, as if it
+    #: had used up its refusals. 0: only the count of refusals ends them.
+    pinch_patience_s: float = 0.0
     #: ... and this many while it searches for a regenerated target (after damage).
     regrowth_pinch_refusals: int = 2
     #: What a robot that keeps its site through a regeneration does with its offset:
@@ -559,6 +565,7 @@ class ETParams:
         cf[F_CAPTURE_OFFSET] = self.capture_offset_mm
         cf[F_REGROW_CAPTURE_OFFSET] = self.regrowth_capture_offset_mm
         cf[F_CAPTURE_MOUTH] = self.capture_mouth_mm
+        cf[F_PINCH_PATIENCE] = self.pinch_patience_s * ticks_per_s
         ci[C_PINCH_REFUSALS] = self.capture_pinch_refusals
         ci[C_REGROW_PINCH_REFUSALS] = self.regrowth_pinch_refusals
         ci[C_REGROW_OFFSETS] = REGROWTH_OFFSETS.index(self.regrowth_offsets)

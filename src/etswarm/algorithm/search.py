@@ -116,6 +116,7 @@ from etswarm.algorithm.params import (
     F_FOLLOW_OFFSET,
     F_PAIR_AIM,
     F_PAIR_TOL,
+    F_PINCH_PATIENCE,
     F_REGROW_CAPTURE_OFFSET,
     F_REGROW_TWO_WIDEN_TICKS,
     F_REGROW_WIDEN_TICKS,
@@ -801,8 +802,10 @@ def search_rule(  # type: ignore[no-untyped-def]
             same = found and cx == ri[i, R_CAND_X] and cy == ri[i, R_CAND_Y]
             same = same and not reported_but_unheard(i, cx, cy, since, nb)
         capture_offset = cf[F_CAPTURE_OFFSET] if first else cf[F_REGROW_CAPTURE_OFFSET]
+        patient = cf[F_PINCH_PATIENCE] <= 0.0 or at_shape < cf[F_PINCH_PATIENCE]
         if (
             same
+            and patient
             and ri[i, R_PINCH_REFUSED]
             < (ci[C_PINCH_REFUSALS] if first else ci[C_REGROW_PINCH_REFUSALS])
             and (
