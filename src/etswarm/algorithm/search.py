@@ -937,7 +937,7 @@ def search_rule(  # type: ignore[no-untyped-def]
             # lost on its way along the repository: the shape lies on beyond home
             ahead = (
                 ci[C_LOST_HOMING] == LOST_HOMING_AHEAD
-                and ri[i, R_GROWTH] == 0
+                and first_growth(i, ri)
                 and ri[i, R_SHAPE_SINCE] == 0
             )
             motor[i] = homing_motion(i, ri, ahead)
