@@ -9,7 +9,7 @@ and the number of runs that ended with a tag held by two robots.
         [--control-threads 2] [--message-delay 1]
     .venv/bin/python benchmarks/bench_et.py formation [--seeds 20] [--first-seed 0]
         [--shapes T,dumbbell,starfish] [--et NAME=VALUE ...]
-        [--jobs 2] [--et NAME=VALUE ...] [--out runs.jsonl]
+        [--jobs 2] [--et NAME=VALUE ...] [--out runs.jsonl] [--layout queue|cluster]
     .venv/bin/python benchmarks/bench_et.py hash [--seconds 600] [--threads 2] [--control-threads 2]
         [--shapes T,disc1000] [--hash-seeds 0,1] [--layout queue] [--damage SPEC]
 
@@ -162,10 +162,12 @@ def hashes(
 
 
 def formation_run(
-    shape: str, seed: int, max_time_s: float, et_options: dict[str, Any], sim: SimParams
+    shape: str, seed: int, max_time_s: float, et_options: dict[str, Any], sim: SimParams,
+    layout: str = "queue",
 ) -> dict[str, Any]:
     """The summary of one formation run."""
-    config = RunConfig(shape=shape, seed=seed, max_time_s=max_time_s, et=ETParams(**et_options))
+    config = RunConfig(shape=shape, seed=seed, max_time_s=max_time_s, layout=layout,
+                       et=ETParams(**et_options))
     return ETRun(config, sim_params=sim).run()
 
 
@@ -180,6 +182,7 @@ def parse_option(text: str) -> tuple[str, Any]:
 def formation(
     seeds: int, shapes: list[str], max_time_s: float, jobs: int, et_options: dict[str, Any],
     first_seed: int = 0, sim: SimParams | None = None, out: TextIO | None = None,
+    layout: str = "queue",
 ) -> None:
     """Formation figures over seeds ``first_seed .. first_seed + seeds - 1`` of each shape;
     with ``out``, every run's JSON summary too, one line each (shape by shape, seed order).
@@ -187,13 +190,13 @@ def formation(
     print(
         f"load average {os.getloadavg()}, {jobs} job(s), ET options {et_options or 'default'}, "
         f"seeds {first_seed}-{first_seed + seeds - 1}, "
-        f"message delay {(sim or SimParams()).message_delay_ticks}"
+        f"message delay {(sim or SimParams()).message_delay_ticks}, layout {layout}"
     )
     seed_range = range(first_seed, first_seed + seeds)
     with ProcessPoolExecutor(max_workers=jobs) as pool:
         futures = {
             (shape, seed): pool.submit(formation_run, shape, seed, max_time_s, et_options,
-                                        sim or SimParams())
+                                        sim or SimParams(), layout)
             for shape in shapes
             for seed in seed_range
         }
@@ -236,7 +239,10 @@ def main() -> None:
         "--shapes", default=None,
         help="formation: default T,dumbbell,starfish; speed: T,bigdisc,disc1000; hash: T,disc1000",
     )
-    parser.add_argument("--layout", default="cluster", help="layout of the hash runs")
+    parser.add_argument(
+        "--layout", default=None, choices=["queue", "cluster"],
+        help="repository layout: hash runs default to cluster, formation runs to queue",
+    )
     parser.add_argument("--damage", action="append", default=[], help="hash: damage spec")
     parser.add_argument("--max-time", type=float, default=4 * 3600.0)
     parser.add_argument("--hash-seeds", default=None, help="hash: seeds, default 0,1")
@@ -264,12 +270,12 @@ def main() -> None:
         speed(args.seconds, sim, tuple((args.shapes or ",".join(SPEED_SHAPES)).split(",")))
     elif args.what == "hash":
         seeds = [int(s) for s in (args.hash_seeds or "0,1").split(",")]
-        hashes(args.seconds, sim, (args.shapes or "T,disc1000").split(","), seeds, args.layout,
-               tuple(args.damage))
+        hashes(args.seconds, sim, (args.shapes or "T,disc1000").split(","), seeds,
+               args.layout or "cluster", tuple(args.damage))
     else:
         shapes = (args.shapes or "T,dumbbell,starfish").split(",")
         formation(args.seeds, shapes, args.max_time, args.jobs, dict(args.et), args.first_seed,
-                  sim, args.out)
+                  sim, args.out, args.layout or "queue")
 
 
 if __name__ == "__main__":
