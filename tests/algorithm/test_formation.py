@@ -59,6 +59,15 @@ def test_fewer_robots_than_cells_says_so() -> None:
     assert len(fitted.target) == 10
 
 
+def test_a_queue_too_long_to_walk_says_so_and_names_the_cluster() -> None:
+    long_queue = ETRun(RunConfig(shape="bigH", seed=0, max_time_s=60))
+    assert any("queue of 318 robots is 14.3 m" in note and "--layout cluster" in note
+               for note in long_queue.notes)
+    cluster = ETRun(RunConfig(shape="bigH", seed=0, max_time_s=60, layout="cluster"))
+    short_queue = ETRun(RunConfig(shape="starfish", seed=0, max_time_s=60))
+    assert not any("queue" in note for note in cluster.notes + short_queue.notes)
+
+
 def test_an_unfinished_run_says_which_sites_are_free_and_who_searches() -> None:
     from etswarm.algorithm.states import PLACED_STATES
     from etswarm.cli.run_outputs import describe

@@ -16,7 +16,7 @@ import numpy as np
 from etswarm.algorithm.census_walk import RESULT_NAMES
 from etswarm.algorithm.et_controller import ETController
 from etswarm.algorithm.extent import cells_in, extent_of
-from etswarm.algorithm.layout import plan_layout
+from etswarm.algorithm.layout import LONG_QUEUE_ROBOTS, REPOSITORY_SPACING_MM, plan_layout
 from etswarm.algorithm.memory import (
     R_CENSUS,
     R_ELECT_SINCE,
@@ -133,6 +133,13 @@ class ETRun:
             spacing_mm=config.et.spacing_mm,
             rng=stream(config.seed, "placement"),
         )
+        queue_m = (n - 3) * REPOSITORY_SPACING_MM / 1000.0
+        if config.layout == "queue" and n - 3 > LONG_QUEUE_ROBOTS:
+            self.notes.append(
+                f"the queue of {n - 3} robots is {queue_m:.1f} m long; searchers lose their way "
+                "along a queue that long and large shapes seldom form (--layout cluster "
+                "packs the repository beside the shape)"
+            )
         self.world = World.from_positions(
             self.layout.pos, self.layout.heading, self.sim_params, config.seed
         )

@@ -145,6 +145,15 @@ DESIGNS: dict[str, tuple[str, Pred]] = {
         ring(0, 0, 2.2, 4.6),
     ),
     "bigdisc": ("large disc, radius 10 spacings", disc(0, 0, 10.0)),
+    "bigplus": (
+        "large plus sign, bars 3 wide and 55 long",
+        union(band((-1, 1), -24.0, 24.0), band((-27, 27), -1.5, 1.5)),
+    ),
+    "bigH": (
+        "large letter H, strokes 3 wide, 41 rows tall",
+        union(band((-20, 20), -15.5, -12.5), band((-20, 20), 12.5, 15.5),
+              band((-1, 1), -12.5, 12.5)),
+    ),
 }
 
 

@@ -30,6 +30,8 @@ LIBRARY_NAMES: tuple[str, ...] = (
     "heart",
     "O",
     "bigdisc",
+    "bigplus",
+    "bigH",
 )
 
 
