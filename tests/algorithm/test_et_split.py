@@ -11,6 +11,7 @@ runs beside the controller's pieces, and the same holds.
 from __future__ import annotations
 
 import json
+import os
 
 import pytest
 from click.testing import CliRunner
@@ -18,7 +19,7 @@ from click.testing import CliRunner
 from etswarm.algorithm.run import ETRun, RunConfig
 from etswarm.cli.main import cli, main
 from etswarm.errors import EtswarmError
-from etswarm.sim.params import SimParams
+from etswarm.sim.params import SimParams, default_control_threads
 from etswarm.sim.simulator import ThreadChooser
 
 from .thread_checks import assert_forming, final_state
@@ -90,12 +91,24 @@ def test_control_threads_is_checked(capsys: pytest.CaptureFixture[str]) -> None:
 def test_cli_control_threads_gives_the_serial_json(delay: list[str]) -> None:
     args = ["run", "triangle", "--seed", "4", "--max-time", "900", "--json", *delay]
     outputs = []
-    for extra in ([], ["--control-threads", "2"]):
+    for extra in (["--control-threads", "1"], ["--control-threads", "2"], []):
         result = CliRunner().invoke(cli, args + extra)
         assert result.exit_code == 0, result.output
         summary = json.loads(result.output)
         summary.pop("wall_time_s")
         outputs.append(summary)
-    assert outputs[0] == outputs[1]
+    assert outputs[0] == outputs[1] == outputs[2]
     assert outputs[0]["sim_time_s"] == 900.0
     assert outputs[0]["message_delay_ticks"] == (1 if delay else 0)
+
+
+def test_a_single_run_uses_two_cores_where_there_are_two(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    monkeypatch.setattr(os, "cpu_count", lambda: 2)
+    assert default_control_threads(1) == 2
+    assert default_control_threads(2) == 1  # --threads 2 runs the control on both already
+    monkeypatch.setattr(os, "cpu_count", lambda: 1)
+    assert default_control_threads(1) == 1
+    monkeypatch.setattr(os, "cpu_count", lambda: None)
+    assert default_control_threads(1) == 1

@@ -77,9 +77,10 @@ from etswarm.algorithm.layout import LAYOUTS
               help="Simulator threads (SimParams.threads): the phases and the robots' "
                    "control run on this many threads; results do not depend on the count "
                    "above 1, but differ from --threads 1's (other noise draws).")
-@click.option("--control-threads", type=int, default=1, show_default=True,
+@click.option("--control-threads", type=int, default=None,
               help="With --threads 1: run the robots' control on this many threads and "
-                   "the rest on one, with results identical to --control-threads 1.")
+                   "the rest on one, with results identical to --control-threads 1 "
+                   "[default: 2 on a machine of two or more cores, else 1].")
 @click.option("--message-delay", type=int, default=0, show_default=True,
               help="Ticks (0 or 1) between a broadcast and the control tick that reads it "
                    "(SimParams.message_delay_ticks). With 1, --control-threads also runs "
@@ -90,18 +91,20 @@ def run(shape: str, robots: int | None, seed: int, loss: float, noise: float, ma
         silent_sites: bool, queue_stride: bool, et_options: tuple[str, ...], fit: bool,
         damage: tuple[str, ...],
         out: Path | None, video: Path | None, fps: float, speedup: float, snapshots: bool,
-        as_json: bool, threads: int, control_threads: int, message_delay: int) -> None:
+        as_json: bool, threads: int, control_threads: int | None, message_delay: int) -> None:
     """Grow SHAPE (a library name or a bitmap file) with the ET algorithm."""
     from etswarm.algorithm.params import ETParams, parse_et_option
     from etswarm.algorithm.run import ETRun, RunConfig
     from etswarm.cli.run_outputs import describe, drive, write_summary
     from etswarm.errors import EtswarmError
-    from etswarm.sim.params import SimParams
+    from etswarm.sim.params import SimParams, default_control_threads
 
     if fps <= 0 or speedup <= 0:
         raise EtswarmError("--fps and --speedup must be > 0")
     if not 1 <= threads <= 256:
         raise EtswarmError(f"--threads must be in [1, 256], got {threads}")
+    if control_threads is None:
+        control_threads = default_control_threads(threads)
     if not 1 <= control_threads <= 256:
         raise EtswarmError(f"--control-threads must be in [1, 256], got {control_threads}")
     if control_threads > 1 and threads > 1:

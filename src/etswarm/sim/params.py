@@ -9,12 +9,21 @@ from __future__ import annotations
 
 import dataclasses
 import math
+import os
 import tomllib
 from dataclasses import dataclass, field, fields
 from pathlib import Path
 from typing import Any, NamedTuple
 
 from etswarm.errors import EtswarmError
+
+
+def default_control_threads(threads: int) -> int:
+    """``control_threads`` for a single interactive run: 2 on a machine of two or more
+    cores when ``threads`` is 1, else 1. Results do not depend on it; runs that share the
+    machine (sweeps, benchmarks with one job per core) keep ``SimParams``' default 1."""
+    return 2 if threads == 1 and (os.cpu_count() or 1) >= 2 else 1
+
 
 #: (minimum, maximum) allowed for each numeric parameter; None = unbounded on that side.
 _RANGES: dict[str, tuple[float | None, float | None]] = {
