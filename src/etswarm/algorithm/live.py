@@ -27,7 +27,7 @@ from etswarm.algorithm.memory import (
 from etswarm.algorithm.offsets import FINE_PER_MM
 from etswarm.algorithm.run import ETRun
 from etswarm.algorithm.states import PLACED_STATES, STATE_NAMES
-from etswarm.damage.apply import SPLIT_SHIFT_MM
+from etswarm.damage.apply import split_shift_mm
 from etswarm.viewer.scene import Scene
 
 Point = tuple[float, float]
@@ -134,7 +134,7 @@ class ETLive:
             return
         normal = np.array([-direction[1], direction[0]]) / length
         side = ((w.pos - a) @ normal > 0) & w.present
-        w.pos[side] += SPLIT_SHIFT_MM * normal
+        w.pos[side] += split_shift_mm(w.pos, w.present, normal) * normal
         self.run.record_damage("split (viewer)", int(side.sum()))
 
     def damage_remove_rect(self, p0: Point, p1: Point) -> None:

@@ -8,8 +8,20 @@ from etswarm.damage.spec import DamageSpec
 from etswarm.errors import EtswarmError
 from etswarm.sim.world import World
 
-#: How far a split moves the cut-off side, mm: far beyond the 70 mm radio range.
+#: How far a split moves the cut-off side beyond the swarm's own width, mm: far beyond
+#: the 70 mm radio range.
 SPLIT_SHIFT_MM = 600.0
+
+
+def split_shift_mm(pos: np.ndarray, present: np.ndarray, normal: np.ndarray) -> float:
+    """How far (mm) a split moves the cut-off side along the unit vector ``normal`` (2,):
+    ``SPLIT_SHIFT_MM`` plus the present robots' extent along it (``pos`` (N, 2) mm,
+    ``present`` (N,) bool). Each part regrows its scaled shape over itself, and a shape
+    may reach as far from the part as the whole swarm was wide; a fixed 600 mm let the
+    parts of a 300-cell plus grow back into each other and elect again as one."""
+    along = pos[present] @ normal
+    width = float(along.max() - along.min()) if along.size else 0.0
+    return SPLIT_SHIFT_MM + width
 
 
 def select(
@@ -54,13 +66,13 @@ def apply_damage(
 ) -> np.ndarray:
     """Damage ``world`` in place; return the IDs affected.
 
-    split: the selected side moves ``SPLIT_SHIFT_MM`` away along the axis (its robots keep
-    running); remove: they leave the world; kill: they stop and fall silent.
+    split: the selected side moves away along the axis, ``split_shift_mm`` (its robots
+    keep running); remove: they leave the world; kill: they stop and fall silent.
     """
     ids = select(spec, world, spacing_mm, rng)
     if spec.kind == "split":
-        shift = np.array([SPLIT_SHIFT_MM, 0.0] if spec.axis == "x" else [0.0, SPLIT_SHIFT_MM])
-        world.pos[ids] += shift
+        normal = np.array([1.0, 0.0] if spec.axis == "x" else [0.0, 1.0])
+        world.pos[ids] += split_shift_mm(world.pos, world.present, normal) * normal
     elif spec.kind == "remove":
         world.remove(ids)
     else:
