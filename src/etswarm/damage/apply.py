@@ -8,20 +8,20 @@ from etswarm.damage.spec import DamageSpec
 from etswarm.errors import EtswarmError
 from etswarm.sim.world import World
 
-#: How far a split moves the cut-off side beyond the swarm's own width, mm: far beyond
-#: the 70 mm radio range.
+#: The least distance a split moves the cut-off side, mm: far beyond the 70 mm radio range.
 SPLIT_SHIFT_MM = 600.0
 
 
 def split_shift_mm(pos: np.ndarray, present: np.ndarray, normal: np.ndarray) -> float:
     """How far (mm) a split moves the cut-off side along the unit vector ``normal`` (2,):
-    ``SPLIT_SHIFT_MM`` plus the present robots' extent along it (``pos`` (N, 2) mm,
-    ``present`` (N,) bool). Each part regrows its scaled shape over itself, and a shape
-    may reach as far from the part as the whole swarm was wide; a fixed 600 mm let the
-    parts of a 300-cell plus grow back into each other and elect again as one."""
+    ``SPLIT_SHIFT_MM``, or the present robots' extent along it (``pos`` (N, 2) mm,
+    ``present`` (N,) bool) when that is more. Each part regrows its scaled shape over
+    itself, and a shape may reach about as far from the part as the whole swarm was wide;
+    a fixed 600 mm let the two parts of a 300-cell plus (2.2 m wide) grow back into each
+    other and elect again as one. Swarms up to 15 spacings across keep the 600 mm."""
     along = pos[present] @ normal
     width = float(along.max() - along.min()) if along.size else 0.0
-    return SPLIT_SHIFT_MM + width
+    return max(SPLIT_SHIFT_MM, width)
 
 
 def select(
