@@ -30,8 +30,9 @@ REPOSITORY_SPACING_MM = 45.0
 
 #: A queue of more robots than this (6.8 m) gets a note suggesting the cluster: searchers
 #: walking a long queue shove it apart, and those lost beside it circle where it used to be
-#: (session 31: bigplus, bigH and a big L, 300-347 cells, formed 4 of 30 runs in 12 h from
-#: the queue, 18 from the cluster).
+#: (session 31: a plus, an H and an L of 311-347 cells with 3-wide strokes formed 4 of 30
+#: runs in 12 h from the queue, 18 from the cluster; the library's bigplus and bigH 3 of
+#: 10 each from the queue, 17 and 14 of 20 from the cluster).
 LONG_QUEUE_ROBOTS = 150
 
 #: Clearance between the repository and the target's sites, in lattice spacings.
