@@ -133,8 +133,8 @@ class ETRun:
             spacing_mm=config.et.spacing_mm,
             rng=stream(config.seed, "placement"),
         )
-        queue_m = (n - 3) * REPOSITORY_SPACING_MM / 1000.0
         if config.layout == "queue" and n - 3 > LONG_QUEUE_ROBOTS:
+            queue_m = (n - 3) * REPOSITORY_SPACING_MM / 1000.0
             self.notes.append(
                 f"the queue of {n - 3} robots is {queue_m:.1f} m long; searchers lose their way "
                 "along a queue that long and large shapes seldom form (--layout cluster "
