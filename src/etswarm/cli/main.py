@@ -62,6 +62,12 @@ def cli() -> None:
     """Simulate Kilobot swarms growing and regrowing shapes with Epigenetic Tracking."""
 
 
+def usage_error_line(err: click.UsageError) -> str:
+    """One line for a bad option or argument: what is wrong, and where the help is."""
+    command = err.ctx.command_path if err.ctx is not None else "etswarm"
+    return f"{command}: error: {err.format_message()} (see '{command} --help')"
+
+
 def main(argv: list[str] | None = None) -> None:
     """Console entry point: run the CLI, turning EtswarmError into a one-line message."""
     try:
@@ -72,6 +78,9 @@ def main(argv: list[str] | None = None) -> None:
     except click.exceptions.Abort:
         click.echo("etswarm: interrupted", err=True)
         sys.exit(130)
+    except click.UsageError as err:
+        click.echo(usage_error_line(err), err=True)
+        sys.exit(err.exit_code)
     except click.ClickException as err:
         err.show()
         sys.exit(err.exit_code)
