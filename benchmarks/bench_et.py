@@ -6,7 +6,7 @@ Formation: formed share, median formation time (simulated) and median wall time 
 and the number of runs that ended with a tag held by two robots.
 
     .venv/bin/python benchmarks/bench_et.py speed [--seconds 600] [--threads 2]
-        [--control-threads 2] [--message-delay 1]
+        [--control-threads 2] [--message-delay 1] [--window 1800]
     .venv/bin/python benchmarks/bench_et.py formation [--seeds 20] [--first-seed 0]
         [--shapes T,dumbbell,starfish] [--et NAME=VALUE ...]
         [--jobs 2] [--et NAME=VALUE ...] [--out runs.jsonl] [--layout queue|cluster]
@@ -14,6 +14,8 @@ and the number of runs that ended with a tag held by two robots.
         [--shapes T,disc1000] [--hash-seeds 0,1] [--layout queue] [--damage SPEC]
 
 ``speed --shapes T,disc1000`` times only those shapes (default T, bigdisc, disc1000).
+``--window S`` also prints each S simulated s's speed and the robots' states: a formation
+slows as more robots search and more are placed.
 Hash: a SHA-256 digest of the final ``pos``, ``heading`` and ``ri`` (the robots' memory)
 of each run, to check that a change of the code keeps the results byte-identical.
 
@@ -46,6 +48,7 @@ import numpy as np
 
 from etswarm.algorithm.params import ETParams, parse_et_option
 from etswarm.algorithm.run import ETRun, RunConfig
+from etswarm.algorithm.states import State
 from etswarm.errors import EtswarmError
 from etswarm.sim.params import SimParams
 
@@ -93,7 +96,11 @@ def shape_path(name: str, tmp: Path) -> str:
     return name
 
 
-def speed(seconds: float, sim: SimParams, shapes: tuple[str, ...] = SPEED_SHAPES) -> None:
+def speed(
+    seconds: float, sim: SimParams, shapes: tuple[str, ...] = SPEED_SHAPES, window: float = 0.0
+) -> None:
+    """Print each shape's speed over ``seconds`` simulated s; with ``window`` > 0, first a
+    line per ``window`` simulated s with that stretch's speed and the robots' states."""
     tmp = Path(tempfile.mkdtemp())
     print(f"load average {os.getloadavg()}, threads {sim.threads}, control threads "
           f"{sim.control_threads}, message delay {sim.message_delay_ticks}")
@@ -108,7 +115,18 @@ def speed(seconds: float, sim: SimParams, shapes: tuple[str, ...] = SPEED_SHAPES
         t0 = time.perf_counter()
         c0 = time.process_time()
         ticks0 = run.world.tick
-        run.advance(round(seconds * 31) - ticks0)
+        end = round(seconds * 31)
+        step = round(window * 31) if window > 0 else end
+        while run.world.tick < end:
+            w0 = time.perf_counter()
+            t_from = run.world.tick
+            run.advance(min(step, end - run.world.tick))
+            if window > 0:
+                span = (run.world.tick - t_from) / 31
+                states = np.bincount(run.controller.states, minlength=len(State))
+                counts = " ".join(f"{st.name.lower()} {states[st]}" for st in State if states[st])
+                print(f"{name:>10} {t_from / 31:>7.0f}-{run.world.tick / 31:.0f} s "
+                      f"{span / (time.perf_counter() - w0):>6.0f}x  {counts}", flush=True)
         wall = time.perf_counter() - t0
         cpu = time.process_time() - c0
         ticks = run.world.tick - ticks0
@@ -230,6 +248,8 @@ def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__)
     parser.add_argument("what", choices=["speed", "formation", "hash"])
     parser.add_argument("--seconds", type=float, default=600.0)
+    parser.add_argument("--window", type=float, default=0.0,
+                        help="speed: also print the speed and states every WINDOW simulated s")
     parser.add_argument("--seeds", type=int, default=20)
     parser.add_argument(
         "--first-seed", type=int, default=0,
@@ -267,7 +287,8 @@ def main() -> None:
     except EtswarmError as err:
         parser.error(str(err))
     if args.what == "speed":
-        speed(args.seconds, sim, tuple((args.shapes or ",".join(SPEED_SHAPES)).split(",")))
+        speed(args.seconds, sim, tuple((args.shapes or ",".join(SPEED_SHAPES)).split(",")),
+              args.window)
     elif args.what == "hash":
         seeds = [int(s) for s in (args.hash_seeds or "0,1").split(",")]
         hashes(args.seconds, sim, (args.shapes or "T,disc1000").split(","), seeds,
