@@ -137,3 +137,33 @@ def test_a_leader_hemmed_in_by_dead_robots_seeds_where_the_remnant_is() -> None:
     assert live >= 20 and live >= 3 * live_paper, (live, live_paper)
     assert not on_leader_now
     assert dead == 0
+
+
+def test_fewest_off_shape_prefers_the_old_shape_where_the_remnant_ties() -> None:
+    """Two seeded placements through the Leader cover as much of the remnant (none of it
+    known). The nearer one puts two cells off the target the remnant was building. Given
+    that target (``placement_off_shape = "fewest"``) the Leader takes the placement wholly
+    on it; without it ("any") the nearer one."""
+    leader = (0, 0)
+    known = {(1, 0), (1, 1), (0, 1)}
+    old = frozenset(sites_after((-1, 0)))
+    plain = RemnantView(known, set(), set(), set(), None, always_fits)
+    minding = RemnantView(known, set(), set(), set(), None, always_fits, old)
+    assert choose_translation(BAR, leader, plain) == (0, 0)
+    assert choose_translation(BAR, leader, minding) == (-1, 0)
+
+
+def test_fewest_off_shape_still_covers_the_most_of_the_remnant_first() -> None:
+    """Covering the remnant comes first: remembered sites at (2, 0) and (2, 1) keep the
+    placement that covers them, though two of its cells are off the old target."""
+    leader = (0, 0)
+    known = {(1, 0), (1, 1), (0, 1)}
+    old = frozenset(sites_after((-1, 0)))
+    remnant = {(2, 0), (2, 1)}
+    minding = RemnantView(known, remnant, set(), set(), None, always_fits, old)
+    assert choose_translation(BAR, leader, minding) == (0, 0)
+
+
+def test_placement_off_shape_is_checked() -> None:
+    with pytest.raises(EtswarmError, match="placement_off_shape"):
+        ETParams(placement_off_shape="most")

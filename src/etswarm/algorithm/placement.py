@@ -61,6 +61,9 @@ class RemnantView:
     enclosed: set[Tag]
     extent: np.ndarray | None
     fits: Callable[[np.ndarray], bool]
+    #: with ``placement_off_shape = "fewest"``: the target the remnant was building (tags);
+    #: empty, cells off it count like any other
+    old_shape: frozenset[Tag] = frozenset()
 
 
 def choose_translation(
@@ -138,6 +141,7 @@ def _best(
         within = 0 if view.extent is None else int(cells_in(moved, view.extent).sum())
         key = (
             0 if seeded else 1, len(sites & view.enclosed), -len(sites & view.remnant),
+            len(sites - view.old_shape) if view.old_shape else 0,
             -within, -len(sites & view.known), len(sites & view.silent),
             0 if leader is None or leader in sites else 1, abs(tx) + abs(ty), tx, ty,
         )
