@@ -167,3 +167,17 @@ def test_fewest_off_shape_still_covers_the_most_of_the_remnant_first() -> None:
 def test_placement_off_shape_is_checked() -> None:
     with pytest.raises(EtswarmError, match="placement_off_shape"):
         ETParams(placement_off_shape="most")
+
+
+def test_weigh_off_shape_trades_a_remnant_site_for_two_cells_off_the_old_shape() -> None:
+    """One remembered site at (2, 0) favours the nearer placement by one site, which puts
+    two cells off the old target: "fewest" keeps it, "weigh" counts each off-shape cell
+    against it as one site of the remnant left out and moves on to the old target."""
+    leader = (0, 0)
+    known = {(1, 0), (1, 1), (0, 1)}
+    old = frozenset(sites_after((-1, 0)))
+    remnant = {(2, 0)}
+    fewest = RemnantView(known, remnant, set(), set(), None, always_fits, old)
+    weigh = RemnantView(known, remnant, set(), set(), None, always_fits, old, True)
+    assert choose_translation(BAR, leader, fewest) == (0, 0)
+    assert choose_translation(BAR, leader, weigh) == (-1, 0)

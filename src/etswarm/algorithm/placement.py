@@ -64,6 +64,9 @@ class RemnantView:
     #: with ``placement_off_shape = "fewest"``: the target the remnant was building (tags);
     #: empty, cells off it count like any other
     old_shape: frozenset[Tag] = frozenset()
+    #: with ``placement_off_shape = "weigh"``: a cell off ``old_shape`` counts against a
+    #: placement as much as a remnant site it leaves out
+    weigh_off_shape: bool = False
 
 
 def choose_translation(
@@ -139,9 +142,10 @@ def _best(
         sites = {(int(x), int(y)) for x, y in moved.tolist()}
         seeded = any(all(c in sites for c in tri) for tri in triangles)
         within = 0 if view.extent is None else int(cells_in(moved, view.extent).sum())
+        off = len(sites - view.old_shape) if view.old_shape else 0
+        covered = len(sites & view.remnant) - (off if view.weigh_off_shape else 0)
         key = (
-            0 if seeded else 1, len(sites & view.enclosed), -len(sites & view.remnant),
-            len(sites - view.old_shape) if view.old_shape else 0,
+            0 if seeded else 1, len(sites & view.enclosed), -covered, off,
             -within, -len(sites & view.known), len(sites & view.silent),
             0 if leader is None or leader in sites else 1, abs(tx) + abs(ty), tx, ty,
         )

@@ -306,9 +306,10 @@ class ETRun:
             remembered = sorted((ctl.remembered_tags(leader) | known) - silent)
             inside = cells_in(np.array(remembered).reshape(-1, 2), extent)
             remnant = {t for t, keep in zip(remembered, inside, strict=True) if keep}
-        mind_old = self.config.et.placement_off_shape == "fewest"
+        off_shape = self.config.et.placement_off_shape
         view = RemnantView(known, remnant, silent, enclosed, extent, ctl.fits,
-                           frozenset(old_shape) if mind_old else frozenset())
+                           frozenset(old_shape) if off_shape != "any" else frozenset(),
+                           off_shape == "weigh")
         shift = choose_translation(cells, (lx, ly), view, self.config.et.placement_seeds)
         if shift is None:
             return cells, 0, 0
