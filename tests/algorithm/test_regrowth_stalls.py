@@ -10,7 +10,7 @@ from __future__ import annotations
 from etswarm.algorithm.params import ETParams
 from etswarm.algorithm.run import ETRun, RunConfig
 
-from .traced import SESSION_19_WIDENING
+from .traced import SESSION_19_WIDENING, SESSION_31_PLACEMENT
 
 #: The consistency settings of session 12, which the first formations were traced with.
 # the settings these runs were traced with (before the pinched-mouth default, the lookahead,
@@ -19,7 +19,7 @@ from .traced import SESSION_19_WIDENING
 TRACED = {
     "consistency_widen_max": 1.0, "fill_lookahead": "off", "held_gossip_every": 0,
     "placement": "local", "site_offsets": "off", "lost_homing": "off",
-    **SESSION_19_WIDENING,
+    **SESSION_19_WIDENING, **SESSION_31_PLACEMENT,
 }
 
 

@@ -10,3 +10,7 @@ SESSION_26_FORMATION = {"two_neighbour_widen_s": 0.0}
 #: at most two pinching captures; seeds traced before then stall or form as described
 #: with these.
 SESSION_19_WIDENING = {"widen_s": 1200.0, "capture_pinch_refusals": 2, **SESSION_26_FORMATION}
+
+#: Until session 32 a Leader's placement counted cells off the old shape like any other;
+#: regrowths traced before then place and branch as described with this.
+SESSION_31_PLACEMENT = {"placement_off_shape": "any"}
