@@ -78,10 +78,11 @@ def choose_translation(
     ``seeds = "leader"`` (the paper's seeds): first the translations that put a cell on
     the Leader's site, ranked by: seeded (the Leader and two adjacent known neighbours
     inside), fewest enclosed silent sites, most remembered held sites of the remnant
-    inside, most cells inside the extent, most known sites, fewest silent sites, then
-    smallest shift. If none of them is seeded, the translations that put a cell on any
-    site known or remembered held, seeded by any triangle of such sites, ranked the same
-    way.
+    inside (less the cells off ``view.old_shape`` with ``view.weigh_off_shape``), fewest
+    cells off ``view.old_shape`` (when it is given), most cells inside the extent, most
+    known sites, fewest silent sites, then smallest shift. If none of them is seeded, the
+    translations that put a cell on any site known or remembered held, seeded by any
+    triangle of such sites, ranked the same way.
 
     ``seeds = "any"``: the best translation seeded by any triangle (ranked the same way,
     the Leader's own site inside as the last tie-break before the shift) replaces the
