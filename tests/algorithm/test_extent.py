@@ -109,7 +109,7 @@ def test_cells_inside_a_hexagon():
 
 
 def regrown(
-    placement: str, off_shape: str = "fewest"
+    placement: str, off_shape: str = "weigh"
 ) -> tuple[ETRun, np.ndarray, dict[int, int], dict[int, int]]:
     """Starfish seed 0 cut through the middle: run until both remnants have their
     targets. Returns the run, the tags (N, 2) held when the cut came, each Leader's slot
@@ -156,8 +156,8 @@ def test_the_scaled_shape_covers_the_remnant():
     assert sum(kept.values()) >= int(alive.sum()) // 2, kept
     # Where the extent was the only new rule (session 16), placing from the robots round
     # the Leader alone left the remnant whose Leader stood on its edge 3 of 49 robots.
-    # (Since session 32 both placements also shun cells off the old shape, and "local"
-    # then keeps 17 and 27 robots here.)
+    # (Since session 32 both placements also weigh cells off the old shape against the
+    # robots they keep: here "extent" keeps 18 and 27 robots, "local" 17 and 27.)
     _, _, _, kept_any = regrown("extent", "any")
     _, _, _, kept_local = regrown("local", "any")
     assert all(kept_any[slot] >= kept_local[slot] for slot in kept_any), (kept_any, kept_local)

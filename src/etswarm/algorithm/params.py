@@ -351,15 +351,15 @@ class ETParams:
     #: 25 possible). With "silent" the 18 damage cases re-formed 329 of 356 runs against
     #: 325 (seeds 0-19) and 308 of 350 against 307 (seeds 20-39), no case worse.
     placement_seeds: str = "silent"
-    #: "fewest": among placements that cover as much of the remnant, the Leader takes one
-    #: with the fewest cells on sites that were off the target the remnant was building
-    #: (its notches and beyond its edges), before it counts cells inside the remnant's
-    #: hexagon: the torn sites that stall regrowths lie there. "any": such cells count
-    #: like any other (session 31's rule). "weigh": each such cell counts against a
-    #: placement as one remnant site left out. Over the 18 damage cases (seeds 0-39) 635
-    #: of 706 runs re-formed with "fewest", 636 with "weigh" (starfish splits 48 of 74
-    #: against 43, kills 61 of 79 against 65), 624 with "any" (session 32).
-    placement_off_shape: str = "fewest"
+    #: "weigh": a Leader's placement counts each cell on a site off the target its
+    #: remnant was building (in its notches or past its edges, where the torn sites that
+    #: stall regrowths lie) against it as one remnant site left out. "fewest": such cells
+    #: only break ties between placements that cover as much of the remnant. "any": they
+    #: count like any other cell (session 31's rule). Over the 18 damage cases (seeds
+    #: 0-39) 636 of 706 runs re-formed with "weigh", 635 with "fewest", 624 with "any";
+    #: on six hard cases of fresh seeds 40-59, 103 of 120 against 97 with "fewest"
+    #: (session 32).
+    placement_off_shape: str = "weigh"
     #: "on": a robot that takes a site estimates how far off its centre it stands and
     #: sends that offset; searchers aim at sites' true centres from where the placed
     #: robots really stand (``offsets``). "off": every placed robot is taken to stand on
