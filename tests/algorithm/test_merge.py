@@ -26,7 +26,7 @@ from etswarm.algorithm.params import ETParams
 from etswarm.algorithm.run import ETRun, RunConfig
 from etswarm.algorithm.states import State
 
-from .traced import SESSION_26_FORMATION
+from .traced import SESSION_26_FORMATION, SESSION_31_PLACEMENT
 
 GENE_X0 = -3
 
@@ -105,10 +105,13 @@ def test_two_remnants_grown_into_each_other_regrow_as_one() -> None:
     config = {"shape": "dumbbell", "seed": 19, "damage": ("remove random=0.3",),
               "max_time_s": 7200}
     apart = ETRun(
-        RunConfig(**config, et=ETParams(merge_remnants="off", **SESSION_26_FORMATION))
+        RunConfig(**config, et=ETParams(merge_remnants="off", **SESSION_26_FORMATION,
+                                        **SESSION_31_PLACEMENT))
     ).run()
     assert not any(c["formed"] for c in apart["components"] if c["robots"] >= 6)
-    merged = ETRun(RunConfig(**config, et=ETParams(**SESSION_26_FORMATION))).run()
+    merged = ETRun(
+        RunConfig(**config, et=ETParams(**SESSION_26_FORMATION, **SESSION_31_PLACEMENT))
+    ).run()
     counts = [e["count"] for e in merged["events"] if e["kind"] == "census"]
     assert counts[:2] == [29, 14] and counts[-1] == 42
     assert [c["formed"] and c["jaccard"] == 1.0 for c in merged["components"]] == [True]
