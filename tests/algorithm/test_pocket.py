@@ -7,7 +7,7 @@ import numpy as np
 
 from etswarm.algorithm.memory import NB_ID, NB_LAST, NB_STATE, NB_TS, NB_TX, NB_TY, allocate
 from etswarm.algorithm.params import ETParams
-from etswarm.algorithm.pocket import pocket_site
+from etswarm.algorithm.pocket import LOCATED_TOL_MM, located_score, pocket_site
 from etswarm.algorithm.search import find_site, window_centre
 from etswarm.algorithm.states import State
 
@@ -87,5 +87,47 @@ def test_between_two_equally_likely_pockets_it_moves_on() -> None:
 def test_without_an_active_neighbour_the_site_waits() -> None:
     ring = {(0, 1): 55.0, (1, 1): 60.0, (1, 0): 58.0, (0, -1): 62.0}
     gene, ci, cf, nb, nb_dist, held = pocket_world(ring, active=(3, 3))
+    assert not pocket_site(0, TICK, TICK - 10, nb, nb_dist, gene, ci, cf, held, ORIGIN,
+                           ORIGIN)[0]
+
+
+def located_world(readings: dict[tuple[int, int], float]):  # type: ignore[no-untyped-def]
+    """``pocket_world`` with ``pocket = "located"``."""
+    gene, _, cf, nb, nb_dist, held = pocket_world(readings)
+    ci, cf = ETParams(pocket="located").pack(31, gene_x0=-4, gene_y0=-4)
+    return gene, ci, cf, nb, nb_dist, held
+
+
+def test_a_located_searcher_takes_the_site_its_fix_lands_on() -> None:
+    # All six robots round (0, 0) read 52 mm: the lattice has stretched evenly round the
+    # searcher, whose least-squares fix is the site's centre (each reading 12 mm out).
+    ring = {(1, 0): 52.0, (1, 1): 52.0, (0, 1): 52.0, (-1, 0): 52.0, (-1, -1): 52.0,
+            (0, -1): 52.0}
+    gene, ci, cf, nb, nb_dist, held = located_world(ring)
+    assert located_score(0, 0, 0, TICK - 10, nb, nb_dist, cf, held, ORIGIN, ORIGIN) < 0.5
+    found, x, y, ts = pocket_site(0, TICK, TICK - 10, nb, nb_dist, gene, ci, cf, held, ORIGIN,
+                                  ORIGIN)
+    assert (found, x, y, ts) == (True, 0, 0, 5)
+
+
+def test_a_located_searcher_off_the_centre_moves_on() -> None:
+    # Readings of a robot 20 mm from (0, 0)'s centre towards (1, 0) (gene frame x): its
+    # fix lands there, beyond the tolerance, so it takes no site.
+    ring = {(1, 0): 20.0 + 12.0, (1, 1): 34.6 + 12.0, (0, 1): 52.9 + 12.0,
+            (-1, 0): 60.0 + 12.0, (0, -1): 34.6 + 12.0}
+    gene, ci, cf, nb, nb_dist, held = located_world(ring)
+    score = located_score(0, 0, 0, TICK - 10, nb, nb_dist, cf, held, ORIGIN, ORIGIN)
+    assert LOCATED_TOL_MM < score < 1e9
+    assert not pocket_site(0, TICK, TICK - 10, nb, nb_dist, gene, ci, cf, held, ORIGIN,
+                           ORIGIN)[0]
+
+
+def test_a_located_fix_that_leaves_a_reading_far_out_is_refused() -> None:
+    # Five robots fit the centre within 12 mm, but the sixth reads 30 mm more than the
+    # others: no point agrees with all of them.
+    ring = {(1, 0): 52.0, (1, 1): 52.0, (0, 1): 52.0, (-1, 0): 52.0, (-1, -1): 52.0,
+            (0, -1): 74.0}
+    gene, ci, cf, nb, nb_dist, held = located_world(ring)
+    assert located_score(0, 0, 0, TICK - 10, nb, nb_dist, cf, held, ORIGIN, ORIGIN) >= 1e9
     assert not pocket_site(0, TICK, TICK - 10, nb, nb_dist, gene, ci, cf, held, ORIGIN,
                            ORIGIN)[0]

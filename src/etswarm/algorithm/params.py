@@ -33,7 +33,7 @@ C_ORBIT_BOUNCE = 16  # 1: a searcher turns back where the shape ends and the rep
 C_CREEP = 17  # 1: a searcher near a free site moves stop-and-go
 C_SECOND_RING = 18  # 1: two references sqrt(3) d apart also locate a site (between them)
 C_HOLE_MEMORY = 19  # 1: the hole test uses the searcher's memory of held sites
-C_POCKET = 20  # 1: a searcher long at the shape may take a site from the robots round it
+C_POCKET = 20  # POCKET_*: when a searcher long at the shape may take a site from all round
 C_RELEASE_FAR = 21  # 1: a regenerated remnant releases its Queued robots farthest first
 C_QUEUE_STRIDE = 22  # 1: along the repository a searcher near its aim drives straight on
 C_SILENT_SITES = 23  # 1: electing robots note and flood the sites that fell silent
@@ -59,7 +59,8 @@ C_AVOID_FOREIGN = 42  # 1: searchers ignore placed robots off their target (obst
 C_MERGE = 43  # 1: placed robots touching another remnant's shape start a joint election
 C_FALSE_ALARM = 44  # 1: an election whose census keeps the current target is a false alarm
 C_TICKS_REMEMBERED = 45  # an Active robot missing only sites remembered held this long excuses them
-N_CI = 46
+C_REGROW_UNPINCH = 46  # a kept robot this many mm into a free site of the new target leaves it
+N_CI = 47
 
 F_SPACING = 0  # lattice spacing d
 F_PAIR_TOL = 1  # two references within this of d trigger a site candidate
@@ -121,6 +122,12 @@ LOST_HOMING_ON = 1
 LOST_HOMING_AHEAD = 2
 #: What an election whose census keeps the current target does (``ETParams.false_alarm``).
 FALSE_ALARM_MODES = ("resume", "regrow")
+#: When a searcher long at the shape may take a site from the robots round it
+#: (``ETParams.pocket``), in the order of their codes in ``ci``.
+POCKET_MODES = ("off", "on", "regrowth", "located")
+POCKET_ON = 1
+POCKET_REGROWTH = 2
+POCKET_LOCATED = 3
 #: The allowed values of each ETParams field that takes one of a few names.
 CHOICES: dict[str, tuple[str, ...]] = {
     "census": CENSUS_METHODS,
@@ -133,6 +140,7 @@ CHOICES: dict[str, tuple[str, ...]] = {
     "orbit": ORBIT_MODES,
     "false_alarm": FALSE_ALARM_MODES,
     "lost_homing": LOST_HOMING_MODES,
+    "pocket": POCKET_MODES,
 }
 
 
@@ -145,7 +153,7 @@ NON_NEGATIVE: frozenset[str] = frozenset(
         "pinch_patience_s",
         "capture_pinch_refusals", "regrowth_pinch_refusals", "two_neighbour_widen_s",
         "regrowth_two_neighbour_widen_s", "capture_mouth_mm", "capture_offset_mm",
-        "regrowth_capture_offset_mm", "remembered_neighbours_s",
+        "regrowth_capture_offset_mm", "remembered_neighbours_s", "regrowth_unpinch_mm",
     }
 )
 #: Parameters that may take any sign.
@@ -282,9 +290,12 @@ class ETParams:
     #: ("on", see ``fill_order``), or look only one step ahead ("off").
     fill_lookahead: str = "on"
     #: A searcher that has been at the shape for 10 minutes may also take a free site from
-    #: the placed robots all round it where the lattice has stretched ("on", see
-    #: ``pocket``), or only from two references at d ("off", the paper). Off by default:
-    #: on starfish it led to shared tags (3 runs in 20).
+    #: the placed robots all round it where the lattice has stretched (see ``pocket``):
+    #: "on" in both phases; "regrowth" only while it searches for a regenerated target;
+    #: "located" the same, with the site chosen by a least-squares fix of where it stands
+    #: among them instead of by its farthest reading; "off": only from two references at
+    #: d (the paper). "on" is not the default: in the first formation of starfish it led
+    #: to shared tags (3 runs in 20, session 8).
     pocket: str = "off"
     #: Which Queued robot of a regenerated remnant leaves first: the one farthest (in
     #: hops) from the scaled shape's robots ("far"), so the repository stays connected to
@@ -450,6 +461,13 @@ class ETParams:
     #: robots 73-77 mm from lattice neighbours). Needs ``held_gossip_every`` > 0. 0: it
     #: waits to hear them (the paper).
     remembered_neighbours_s: float = 120.0
+    #: A robot on a site of the old target that the new target keeps gives the site up
+    #: and searches again when its offset (``site_offsets``) puts it this many mm or more
+    #: into a neighbour site of the new target that no robot it hears holds: such a site,
+    #: often a notch the old shape left empty, would stay too narrow for a body
+    #: (``pinch.pinches_new_target``). Whole mm; 0: every robot on a site of the new
+    #: target keeps it (the paper).
+    regrowth_unpinch_mm: int = 0
 
     def __post_init__(self) -> None:
         for f in fields(self):
@@ -460,7 +478,7 @@ class ETParams:
                         f"{f.name} must be one of {CHOICES[f.name]}, got {value!r}"
                     )
             elif f.name in (
-                "creep", "second_ring", "hole_memory", "fill_lookahead", "pocket", "queue_stride",
+                "creep", "second_ring", "hole_memory", "fill_lookahead", "queue_stride",
                 "silent_sites", "lost_beacon", "lost_yield", "site_offsets",
                 "report_patience", "merge_remnants",
             ):
@@ -527,7 +545,7 @@ class ETParams:
         ci[C_FILL_LOOKAHEAD] = 1 if self.fill_lookahead == "on" else 0
         ci[C_GOSSIP_EVERY] = self.held_gossip_every if self.hole_memory == "on" else 0
         ci[C_TICKS_RANK_WAIT] = ticks(self.queue_rank_wait_s) if self.queue_rank_wait_s > 0 else 0
-        ci[C_POCKET] = 1 if self.pocket == "on" else 0
+        ci[C_POCKET] = POCKET_MODES.index(self.pocket)
         # the placement over the extent counts the sites remembered held: gossip keeps them
         ci[C_EXTENT] = 1 if self.placement == "extent" and ci[C_GOSSIP_EVERY] > 0 else 0
         ci[C_OFFSETS] = 1 if self.site_offsets == "on" else 0
@@ -546,6 +564,7 @@ class ETParams:
             if self.remembered_neighbours_s > 0 and ci[C_GOSSIP_EVERY] > 0
             else 0
         )
+        ci[C_REGROW_UNPINCH] = self.regrowth_unpinch_mm
         ci[C_SETTLE_RETRIES] = self.settle_retries
         ci[C_REGROW_RETRIES] = self.regrowth_settle_retries
         ci[C_TICKS_HOVER] = round(self.regrowth_hover_s * ticks_per_s)

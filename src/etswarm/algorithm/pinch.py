@@ -50,9 +50,26 @@ import math
 from numba import njit
 
 from etswarm.algorithm.kernel_util import DIR_X, DIR_Y, direction_index, gene_at, is_placed
-from etswarm.algorithm.memory import NB_ID, NB_LAST, NB_STATE, NB_TX, NB_TY
-from etswarm.algorithm.offsets import locate, site_x, site_y
-from etswarm.algorithm.params import C_OFFSETS, F_CAPTURE_MOUTH, F_CAPTURE_PINCH, F_SPACING
+from etswarm.algorithm.memory import (
+    NB_ID,
+    NB_LAST,
+    NB_STATE,
+    NB_TX,
+    NB_TY,
+    R_OFF_X,
+    R_OFF_Y,
+    R_TAG_X,
+    R_TAG_Y,
+)
+from etswarm.algorithm.offsets import FINE_PER_MM, locate, site_x, site_y
+from etswarm.algorithm.params import (
+    C_OFFSETS,
+    C_REGROW_UNPINCH,
+    C_TICKS_NB_FRESH,
+    F_CAPTURE_MOUTH,
+    F_CAPTURE_PINCH,
+    F_SPACING,
+)
 from etswarm.algorithm.site_memory import is_held, site_taken
 
 #: A free neighbour site counts when this many of its neighbour sites are held once the
@@ -163,3 +180,38 @@ def would_pinch(i, cx, cy, since, nb, nb_dist, gene_flag, ci, cf, held_i, wx, wy
     if not ok:
         return False
     return toward_free(x - x0, y - y0, free) >= limit
+
+
+@njit
+def pinches_new_target(i, tick, ri, nb, gene_flag, ci):  # type: ignore[no-untyped-def]
+    """Robot i, on a site of the target a regeneration replaces, adopts the new target
+    ``gene_flag`` (its table not yet cleared): its own offset puts it ``C_REGROW_UNPINCH``
+    mm or more into a neighbour site of the new target that no placed robot it heard
+    within the neighbour timeout holds. Such a site is most often a notch the old shape
+    left empty, beside which a robot could stand far off its own site (traced on starfish
+    ``split x=mid`` seed 7: robot 59, kept on (1, 2) 24 mm into the new target's free
+    (0, 2), left it 17 mm of room for 4 h). Always False with offsets off or the option 0.
+    """
+    limit = ci[C_REGROW_UNPINCH]
+    if limit <= 0 or ci[C_OFFSETS] == 0:
+        return False
+    x = ri[i, R_TAG_X]
+    y = ri[i, R_TAG_Y]
+    held = 0
+    for m in range(nb.shape[1]):
+        if nb[i, m, NB_ID] < 0 or not is_placed(nb[i, m, NB_STATE]):
+            continue
+        if tick - nb[i, m, NB_LAST] > ci[C_TICKS_NB_FRESH]:
+            continue
+        k = direction_index(nb[i, m, NB_TX] - x, nb[i, m, NB_TY] - y)
+        if k >= 0:
+            held |= 1 << k
+    free = 0
+    for k in range(6):
+        if not (held >> k) & 1 and gene_at(gene_flag, ci, x + DIR_X[k], y + DIR_Y[k]) == 1:
+            free |= 1 << k
+    if free == 0:
+        return False
+    ox = ri[i, R_OFF_X] / FINE_PER_MM
+    oy = ri[i, R_OFF_Y] / FINE_PER_MM
+    return toward_free(ox, oy, free) >= limit

@@ -23,6 +23,8 @@ for ``POCKET_AFTER_TICKS`` takes free site c when:
 
 from __future__ import annotations
 
+import math
+
 from numba import njit
 
 from etswarm.algorithm.kernel_util import (
@@ -36,7 +38,21 @@ from etswarm.algorithm.kernel_util import (
     lattice_distance,
 )
 from etswarm.algorithm.memory import NB_ID, NB_LAST, NB_STATE, NB_TS, NB_TX, NB_TY
-from etswarm.algorithm.params import C_TICKS_NB_FRESH, F_CONSIST_TOL, F_SPACING
+from etswarm.algorithm.offsets import (
+    anchor_x,
+    anchor_y,
+    is_anchor,
+    locate,
+    site_x,
+    site_y,
+)
+from etswarm.algorithm.params import (
+    C_POCKET,
+    C_TICKS_NB_FRESH,
+    F_CONSIST_TOL,
+    F_SPACING,
+    POCKET_LOCATED,
+)
 from etswarm.algorithm.site_memory import is_held, shuts_in, site_taken
 
 #: A searcher may use pocket capture after this many ticks at the shape (10 minutes).
@@ -49,6 +65,11 @@ POCKET_NEAR_MM = 30.0
 POCKET_MIN_NEIGHBOURS = 3
 #: The best site's farthest neighbour must be nearer than the next best's by this (mm).
 POCKET_MARGIN_MM = 10.0
+#: With ``pocket = "located"``: the robot's least-squares position must lie this near
+#: (mm) the site's centre ...
+LOCATED_TOL_MM = 8.0
+#: ... and leave no reading of a placed robot in range more than this (mm) out.
+LOCATED_RESIDUAL_MM = 20.0
 
 
 @njit
@@ -91,6 +112,51 @@ def pocket_score(i, cx, cy, since, nb, nb_dist, cf, held_i, ox, oy):  # type: ig
 
 
 @njit
+def located_score(i, cx, cy, since, nb, nb_dist, cf, held_i, ox, oy):  # type: ignore[no-untyped-def]
+    """How far (mm) from the centre of free site (cx, cy) robot i stands by least squares on
+    its readings since ``since`` of the placed robots round it (``offsets.locate``, from
+    where they report they stand), or FAR when the site is no pocket for it: fewer than
+    ``POCKET_MIN_NEIGHBOURS`` robots of its neighbour sites heard, one it knows of there
+    (table or memory of held sites) not heard since then, one nearer than a body or
+    beyond ``POCKET_REACH_MM``, or a reading of any robot used that the fit leaves more
+    than ``LOCATED_RESIDUAL_MM`` out."""
+    d = cf[F_SPACING]
+    n_heard = 0
+    heard_dirs = 0
+    for j in range(nb.shape[1]):
+        if nb[i, j, NB_ID] < 0 or not is_placed(nb[i, j, NB_STATE]):
+            continue
+        k = direction_index(nb[i, j, NB_TX] - cx, nb[i, j, NB_TY] - cy)
+        if k < 0:
+            continue
+        if nb[i, j, NB_LAST] < since:
+            return FAR
+        reading = nb_dist[i, j]
+        if reading > POCKET_REACH_MM or reading < POCKET_NEAR_MM:
+            return FAR
+        n_heard += 1
+        heard_dirs |= 1 << k
+    if n_heard < POCKET_MIN_NEIGHBOURS:
+        return FAR
+    for k in range(6):
+        if not (heard_dirs >> k) & 1 and is_held(held_i, cx + DIR_X[k], cy + DIR_Y[k], ox, oy):
+            return FAR
+    px0 = site_x(cx, cy, d)
+    py0 = site_y(cy, d)
+    ok, px, py = locate(i, since, px0, py0, nb, nb_dist, d)
+    if not ok:
+        return FAR
+    for j in range(nb.shape[1]):
+        if not is_anchor(i, j, since, nb, nb_dist):
+            continue
+        ex = px - anchor_x(i, j, nb, d)
+        ey = py - anchor_y(i, j, nb, d)
+        if abs(nb_dist[i, j] - math.sqrt(ex * ex + ey * ey)) > LOCATED_RESIDUAL_MM:
+            return FAR
+    return math.sqrt((px - px0) ** 2 + (py - py0) ** 2)
+
+
+@njit
 def min_active_ts(i, tick, cx, cy, nb, ci):  # type: ignore[no-untyped-def]
     """Least TS of the Active robots of (cx, cy)'s neighbour sites heard lately (-1: none)."""
     fresh = ci[C_TICKS_NB_FRESH]
@@ -120,6 +186,7 @@ def pocket_site(i, tick, since, nb, nb_dist, gene_flag, ci, cf, held_i, ox, oy):
     best_x = 0
     best_y = 0
     slots = nb.shape[1]
+    located = ci[C_POCKET] == POCKET_LOCATED
     for a in range(slots):
         if nb[i, a, NB_ID] < 0 or not is_placed(nb[i, a, NB_STATE]):
             continue
@@ -134,7 +201,12 @@ def pocket_site(i, tick, since, nb, nb_dist, gene_flag, ci, cf, held_i, ox, oy):
                 continue
             if is_held(held_i, cx, cy, ox, oy):
                 continue
-            score = pocket_score(i, cx, cy, since, nb, nb_dist, cf, held_i, ox, oy)
+            if located:
+                score = located_score(i, cx, cy, since, nb, nb_dist, cf, held_i, ox, oy)
+                if score > LOCATED_TOL_MM:
+                    score = FAR
+            else:
+                score = pocket_score(i, cx, cy, since, nb, nb_dist, cf, held_i, ox, oy)
             if score >= FAR:
                 continue
             if score < best:

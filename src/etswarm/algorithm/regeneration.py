@@ -126,6 +126,7 @@ from etswarm.algorithm.params import (
     C_TICKS_REGEN_QUIET,
     REGROWTH_OFFSETS,
 )
+from etswarm.algorithm.pinch import pinches_new_target
 from etswarm.algorithm.release import HOPS_NONE
 
 #: A robot catching up with a missed election keeps its site only when a placed robot of
@@ -312,7 +313,8 @@ def restart_offset(i, tick, seed, ri, ci):  # type: ignore[no-untyped-def]
 @njit
 def adopt_target(i, tick, ri, nb, slot, epoch, leader, gene_flag, gene_nn, slot_info, ci):  # type: ignore[no-untyped-def]
     """Robot i takes target ``slot`` of ``epoch``: stays on its site if the new shape has
-    it (the Leader as the Active seed), else goes back to Queued. Its neighbour table is
+    it (the Leader as the Active seed) and it does not stand far into a free site of it
+    (``pinch.pinches_new_target``), else goes back to Queued. Its neighbour table is
     cleared: what it knew describes the old target. When the new target is the one it
     had (a false alarm, ``ETParams.false_alarm`` "resume"), it goes back to what it was
     instead (``resume``)."""
@@ -337,6 +339,11 @@ def adopt_target(i, tick, ri, nb, slot, epoch, leader, gene_flag, gene_nn, slot_
         resume(i, tick, ri, before, electing, old_epoch)
         return
     ri[i, R_GROWTH] = epoch
+    x = ri[i, R_TAG_X]
+    y = ri[i, R_TAG_Y]
+    keeps = ri[i, R_HAS_TAG] == 1 and gene_at(gene_flag[slot], ci, x, y) == 1
+    if keeps and i != leader and pinches_new_target(i, tick, ri, nb, gene_flag[slot], ci):
+        keeps = False  # it would narrow a free site of the new shape: it searches again
     for m in range(nb.shape[1]):
         nb[i, m, NB_ID] = -1
     ri[i, R_COUNT] = 0
@@ -346,9 +353,7 @@ def adopt_target(i, tick, ri, nb, slot, epoch, leader, gene_flag, gene_nn, slot_
     ri[i, R_EXCUSED] = 0
     ri[i, R_REMEMBERED_SINCE] = 0
     ri[i, R_RESUMED_AT] = 0
-    x = ri[i, R_TAG_X]
-    y = ri[i, R_TAG_Y]
-    if ri[i, R_HAS_TAG] == 1 and gene_at(gene_flag[slot], ci, x, y) == 1:
+    if keeps:
         ri[i, R_NN] = gene_at(gene_nn[slot], ci, x, y)
         restart_offset(i, tick, i == leader, ri, ci)
         if i == leader:

@@ -128,6 +128,8 @@ from etswarm.algorithm.params import (
     F_YIELD_DIST,
     LOST_HOMING_AHEAD,
     LOST_HOMING_ON,
+    POCKET_ON,
+    POCKET_REGROWTH,
 )
 from etswarm.algorithm.pinch import too_far_off, would_pinch
 from etswarm.algorithm.pocket import POCKET_AFTER_TICKS, pocket_site
@@ -764,7 +766,11 @@ def search_rule(  # type: ignore[no-untyped-def]
         widen_ticks = widening_ticks(ri[i, R_GROWTH], cf)
         widen = 1.0 + (cf[F_WIDEN_MAX] - 1.0) * min(1.0, at_shape / widen_ticks)
         # Long at the shape, it may also take a site from the robots round it (``pocket``).
-        pocket = ci[C_POCKET] == 1 and at_shape >= POCKET_AFTER_TICKS
+        pocket_mode = ci[C_POCKET]
+        pocket = at_shape >= POCKET_AFTER_TICKS and (
+            pocket_mode == POCKET_ON
+            or (pocket_mode >= POCKET_REGROWTH and not first_growth(i, ri))
+        )
     pair_aim = window_centre(cf, at_shape)
     if hovering(i, tick, ri, ci):
         pair_aim = d  # long near one site: its pair may stand too far apart for the window
