@@ -19,6 +19,15 @@ for ``POCKET_AFTER_TICKS`` takes free site c when:
   ``POCKET_MARGIN_MM`` (between two free sites it would be unsure, and moves on);
 - the usual rules hold: gene flag 1, not known held, an Active neighbour (the least TS
   among them is its own TS - 1), no hole closed (``site_memory.shuts_in``).
+
+With ``ETParams.pocket = "located"`` (after damage only) the second and third conditions
+are replaced: the searcher fixes where it stands by least squares on its readings of the
+placed robots in range (``offsets.locate``, from where they report they stand) and takes
+c when the fix lies within ``LOCATED_TOL_MM`` of c's centre and leaves no reading more
+than ``LOCATED_RESIDUAL_MM`` out (``located_score``). A searcher orbiting a stretched
+notch at d from its nearest robot is never in the middle, where the farthest-reading
+test wants it, but its fix can land on the site (traced on starfish ``split y=mid`` seed
+18: within 3.5-6 mm of (-2, -5)'s centre, no reading more than 16 mm out).
 """
 
 from __future__ import annotations
