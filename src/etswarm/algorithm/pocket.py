@@ -82,54 +82,13 @@ LOCATED_RESIDUAL_MM = 20.0
 
 
 @njit
-def pocket_score(i, cx, cy, since, nb, nb_dist, cf, held_i, ox, oy):  # type: ignore[no-untyped-def]
+def ring_reading(i, cx, cy, since, nb, nb_dist, held_i, ox, oy):  # type: ignore[no-untyped-def]
     """The farthest reading (mm) of the placed robots of (cx, cy)'s neighbour sites that
-    robot i heard since ``since``, or FAR when the site is no pocket for it (see module).
-    Every neighbour site that its memory ``held_i`` holds must be among those heard."""
-    d = cf[F_SPACING]
-    consist_tol = cf[F_CONSIST_TOL]
+    robot i heard since ``since``, or FAR when it does not stand inside their ring: fewer
+    than ``POCKET_MIN_NEIGHBOURS`` of them, one it knows of there (in its table, or in its
+    memory ``held_i`` of held sites) not heard since then, or one nearer than a body or
+    beyond ``POCKET_REACH_MM``."""
     farthest = 0.0
-    n_heard = 0
-    heard_dirs = 0
-    for j in range(nb.shape[1]):
-        if nb[i, j, NB_ID] < 0 or not is_placed(nb[i, j, NB_STATE]):
-            continue
-        jx = nb[i, j, NB_TX]
-        jy = nb[i, j, NB_TY]
-        k = direction_index(jx - cx, jy - cy)
-        adjacent = k >= 0
-        heard = nb[i, j, NB_LAST] >= since
-        if adjacent:
-            if not heard:
-                return FAR  # a neighbour of the site it no longer hears: not inside
-            reading = nb_dist[i, j]
-            if reading > POCKET_REACH_MM or reading < POCKET_NEAR_MM:
-                return FAR
-            farthest = max(farthest, reading)
-            n_heard += 1
-            heard_dirs |= 1 << k
-        elif heard:
-            pred = lattice_distance(cx, cy, jx, jy) * d
-            if nb_dist[i, j] < pred - consist_tol:
-                return FAR
-    if n_heard < POCKET_MIN_NEIGHBOURS:
-        return FAR
-    for k in range(6):
-        if not (heard_dirs >> k) & 1 and is_held(held_i, cx + DIR_X[k], cy + DIR_Y[k], ox, oy):
-            return FAR  # part of the ring round the site is held but not near: not inside
-    return farthest
-
-
-@njit
-def located_score(i, cx, cy, since, nb, nb_dist, cf, held_i, ox, oy):  # type: ignore[no-untyped-def]
-    """How far (mm) from the centre of free site (cx, cy) robot i stands by least squares on
-    its readings since ``since`` of the placed robots round it (``offsets.locate``, from
-    where they report they stand), or FAR when the site is no pocket for it: fewer than
-    ``POCKET_MIN_NEIGHBOURS`` robots of its neighbour sites heard, one it knows of there
-    (table or memory of held sites) not heard since then, one nearer than a body or
-    beyond ``POCKET_REACH_MM``, or a reading of any robot used that the fit leaves more
-    than ``LOCATED_RESIDUAL_MM`` out."""
-    d = cf[F_SPACING]
     n_heard = 0
     heard_dirs = 0
     for j in range(nb.shape[1]):
@@ -139,17 +98,56 @@ def located_score(i, cx, cy, since, nb, nb_dist, cf, held_i, ox, oy):  # type: i
         if k < 0:
             continue
         if nb[i, j, NB_LAST] < since:
-            return FAR
+            return FAR  # a neighbour of the site it no longer hears: not inside
         reading = nb_dist[i, j]
         if reading > POCKET_REACH_MM or reading < POCKET_NEAR_MM:
             return FAR
+        farthest = max(farthest, reading)
         n_heard += 1
         heard_dirs |= 1 << k
     if n_heard < POCKET_MIN_NEIGHBOURS:
         return FAR
     for k in range(6):
         if not (heard_dirs >> k) & 1 and is_held(held_i, cx + DIR_X[k], cy + DIR_Y[k], ox, oy):
+            return FAR  # part of the ring round the site is held but not near: not inside
+    return farthest
+
+
+@njit
+def pocket_score(i, cx, cy, since, nb, nb_dist, cf, held_i, ox, oy):  # type: ignore[no-untyped-def]
+    """The farthest reading (mm) of the ring round (cx, cy) (``ring_reading``), or FAR when
+    the site is no pocket for robot i (see module): it stands outside the ring, or a
+    placed robot it heard since ``since`` that holds no neighbour site reads nearer than
+    its lattice distance from the site allows."""
+    farthest = ring_reading(i, cx, cy, since, nb, nb_dist, held_i, ox, oy)
+    if farthest >= FAR:
+        return FAR
+    d = cf[F_SPACING]
+    consist_tol = cf[F_CONSIST_TOL]
+    for j in range(nb.shape[1]):
+        if nb[i, j, NB_ID] < 0 or not is_placed(nb[i, j, NB_STATE]):
+            continue
+        if nb[i, j, NB_LAST] < since:
+            continue
+        jx = nb[i, j, NB_TX]
+        jy = nb[i, j, NB_TY]
+        if direction_index(jx - cx, jy - cy) >= 0:
+            continue
+        if nb_dist[i, j] < lattice_distance(cx, cy, jx, jy) * d - consist_tol:
             return FAR
+    return farthest
+
+
+@njit
+def located_score(i, cx, cy, since, nb, nb_dist, cf, held_i, ox, oy):  # type: ignore[no-untyped-def]
+    """How far (mm) from the centre of free site (cx, cy) robot i stands by least squares on
+    its readings since ``since`` of the placed robots round it (``offsets.locate``, from
+    where they report they stand), or FAR when it stands outside their ring
+    (``ring_reading``) or the fit leaves a reading of a placed robot in range more than
+    ``LOCATED_RESIDUAL_MM`` out."""
+    if ring_reading(i, cx, cy, since, nb, nb_dist, held_i, ox, oy) >= FAR:
+        return FAR
+    d = cf[F_SPACING]
     px0 = site_x(cx, cy, d)
     py0 = site_y(cy, d)
     ok, px, py = locate(i, since, px0, py0, nb, nb_dist, d)
