@@ -82,7 +82,6 @@ from etswarm.algorithm.memory import (
     R_WALK_SEEN,
     R_YIELD_SINCE,
     SLOT_LIMIT,
-    SLOT_N,
     SLOT_TX,
     SLOT_TY,
     SLOT_WX,
@@ -121,6 +120,7 @@ from etswarm.algorithm.regeneration import (
     catch_up,
     election_rule,
     join_election,
+    target_code,
 )
 from etswarm.algorithm.release import queued_rule
 from etswarm.algorithm.search import search_rule
@@ -247,9 +247,9 @@ def note_reading(i, k, tick, in_data, in_dist, nb, nb_dist):  # type: ignore[no-
 
 @njit(inline="always")
 def slot_signature(slot, slot_info):  # type: ignore[no-untyped-def]
-    """``messages.target_signature`` of the target in ``slot`` (its n and placement)."""
+    """``messages.target_signature`` of the target in ``slot`` (its code and placement)."""
     return target_signature(
-        slot_info[slot, SLOT_N], slot_info[slot, SLOT_TX], slot_info[slot, SLOT_TY]
+        target_code(slot_info, slot), slot_info[slot, SLOT_TX], slot_info[slot, SLOT_TY]
     )
 
 

@@ -116,8 +116,11 @@ class ETController:
             np.all((gx >= 0) & (gy >= 0) & (gx < self.grid_shape[0]) & (gy < self.grid_shape[1]))
         )
 
-    def add_target(self, cells: np.ndarray, release_limit: int, tx: int, ty: int) -> int:
-        """Store the gene of ``cells`` ((P, 2) tags) in a new slot; return the slot."""
+    def add_target(
+        self, cells: np.ndarray, release_limit: int, tx: int, ty: int, turn: int = 0
+    ) -> int:
+        """Store the gene of ``cells`` ((P, 2) tags: scale(bitmap, n) turned ``turn`` times
+        and translated by (tx, ty)) in a new slot; return the slot."""
         slot = len(self.slot_cells)
         if slot == self.slot_info.shape[0]:
             grow = self.slot_info.shape[0]
@@ -135,7 +138,7 @@ class ETController:
             gy = cells[:, 1] - self.y0
             self.gene_flag[slot, gx, gy] = 1
             self.gene_nn[slot, gx, gy] = neighbour_counts(cells)
-        self.slot_info[slot] = (len(cells), release_limit, tx, ty, 1, *window, slot)
+        self.slot_info[slot] = (len(cells), release_limit, tx, ty, 1, *window, slot, turn)
         key = sort_cells(cells)
         for other, other_cells in enumerate(self.slot_cells):
             if np.array_equal(sort_cells(other_cells), key):
@@ -218,13 +221,17 @@ class ETController:
         gx, gy = np.nonzero(self.held[i])
         return set(zip((gx + ox).tolist(), (gy + oy).tolist(), strict=True))
 
-    def answer(self, leader: int, cells: np.ndarray, n: int, tx: int, ty: int) -> int:
-        """Give Leader ``leader`` its scaled target (``cells`` already translated)."""
-        from etswarm.algorithm.regeneration import find_slot
+    def answer(
+        self, leader: int, cells: np.ndarray, n: int, tx: int, ty: int, turn: int = 0
+    ) -> int:
+        """Give Leader ``leader`` its scaled target (``cells`` already turned ``turn`` times
+        and translated)."""
+        from etswarm.algorithm.regeneration import TURN_CODE, find_slot
 
-        slot = find_slot(self.slot_info, n, tx, ty) if len(self.slot_cells) > 1 else -1
+        code = n + TURN_CODE * turn
+        slot = find_slot(self.slot_info, code, tx, ty) if len(self.slot_cells) > 1 else -1
         if slot < 0:
-            slot = self.add_target(cells, release_limit=len(cells), tx=tx, ty=ty)
+            slot = self.add_target(cells, release_limit=len(cells), tx=tx, ty=ty, turn=turn)
         self.ri[leader, R_NEWSLOT] = slot
         self.ri[leader, R_REQUEST] = 2
         self.idle[leader] = 0  # its memory changed (a Leader never sleeps; to be sure)

@@ -17,9 +17,10 @@ memory only; the controller never reads another robot's row.
 - ``gene_flag``  (S, GX, GY) uint8 and ``gene_nn`` (S, GX, GY) int8: the genes of up to S
   targets (slot 0: the original shape; later slots: scaled shapes made by regeneration) as
   dense grids indexed by (X - ci[C_GENE_X0], Y - ci[C_GENE_Y0]); outside means flag 0
-- ``slot_info``  (S, SLOT_FIELDS) int64: per target slot its cell count, release limit and
-  translation; a robot that hears of a scaled target (n, tx, ty) finds its slot here (the
-  slots memoise ``scale``, which every robot could compute on board from n alone)
+- ``slot_info``  (S, SLOT_FIELDS) int64: per target slot its cell count, release limit,
+  translation and turn; a robot that hears of a scaled target (its code n + 8192 * turn,
+  tx, ty; ``regeneration.target_code``) finds its slot here (the slots memoise ``scale``,
+  which every robot could compute on board from n alone)
 - ``ci``, ``cf``: packed constants (see ``params``)
 - ``walk_seen``  (N, GX, GY) uint8: per robot, the tags it collected walking round its
   remnant as Leader (census ``walk``; grid as the genes'); (N, 1, 1) when census ``tree``
@@ -82,8 +83,8 @@ R_REQUEST = 40  # leader's request to compute the scaled gene: 0 none, 1 asked, 
 R_CENSUS = 41  # robots counted by the census (leader)
 R_NEWSLOT = 42  # answer: slot of the scaled target
 R_ADOPTED_AT = 43  # tick the current target was adopted (it is relayed for a while)
-R_PEND_EPOCH = 44  # newest target announcement heard: epoch (-1: none), n, tx, ty
-R_PEND_N = 45
+R_PEND_EPOCH = 44  # newest target announcement heard: epoch (-1: none), code, tx, ty
+R_PEND_N = 45  # the target's code: n + 8192 * turn (``regeneration.target_code``)
 R_PEND_TX = 46
 R_PEND_TY = 47
 # Census by periphery walk (``census_walk``).
@@ -245,7 +246,8 @@ SLOT_USED = 4  # 1 when the slot holds a target
 SLOT_WX = 5  # origin of the searchers' memory window (see ``site_memory``): least tag - 1
 SLOT_WY = 6
 SLOT_SHAPE = 7  # the first slot holding the same cells (the same target, wherever found)
-SLOT_FIELDS = 8
+SLOT_TURN = 8  # 60° turns of scale(bitmap, n) before the translation (``lattice.turn_cells``)
+SLOT_FIELDS = 9
 
 #: Neighbour-table slots per robot (a lattice site has 6 neighbours and 6 at ~1.73 d).
 NB_SLOTS = 16

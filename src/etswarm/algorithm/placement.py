@@ -17,7 +17,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from etswarm.algorithm.extent import cells_in
-from etswarm.shapes.lattice import NEIGHBOUR_OFFSETS
+from etswarm.shapes.lattice import NEIGHBOUR_OFFSETS, turn_cells
 
 Tag = tuple[int, int]
 
@@ -113,6 +113,42 @@ def choose_translation(
                 return best[-2], best[-1]
             return anywhere[-2], anywhere[-1]
     return None if best is None else (best[-2], best[-1])
+
+
+def choose_placement(
+    cells: np.ndarray, leader: Tag, view: RemnantView, seeds: str = "leader", turns: bool = False
+) -> tuple[int, int, int] | None:
+    """The turn and translation (turn, tx, ty) for the scaled shape ``cells`` ((P, 2)
+    tags): ``choose_translation`` of ``lattice.turn_cells(cells, turn)``; None when no
+    translation fits the gene grids.
+
+    Without ``turns`` the turn is 0 (the original's orientation). With ``turns`` each of
+    the six turns gets its translation, and each is ranked by ``_best``'s key with seed
+    triangles anywhere among the sites known or remembered held. A turn replaces the one
+    before it in the order 0-5 only when it ranks better on seeding and enclosed silent
+    sites, or equal there and covers at least one more remnant site (less the cells off
+    the old shape when those are weighed): an equal one leaves the shape as it was."""
+    if not turns:
+        shift = choose_translation(cells, leader, view, seeds)
+        return None if shift is None else (0, shift[0], shift[1])
+    pool = view.known | view.remnant | {leader}
+    triangles = [t for tag in sorted(pool) for t in triangles_at(tag, pool)]
+    best: tuple[int, int, int] | None = None
+    best_key: tuple[int, ...] | None = None
+    for turn in range(6):
+        turned = turn_cells(cells, turn)
+        shift = choose_translation(turned, leader, view, seeds)
+        if shift is None:
+            continue
+        key = _best(turned, [shift], triangles, view)
+        if key is None:
+            continue
+        if best_key is None or key[:2] < best_key[:2] or (
+            key[:2] == best_key[:2] and key[2] < best_key[2]
+        ):
+            best_key = key
+            best = (turn, shift[0], shift[1])
+    return best
 
 
 def _far_better(other: tuple[int, ...], own: tuple[int, ...], n_cells: int) -> bool:

@@ -113,6 +113,7 @@ from etswarm.algorithm.memory import (
     R_WALK_RESULT,
     SLOT_N,
     SLOT_SHAPE,
+    SLOT_TURN,
     SLOT_TX,
     SLOT_TY,
     SLOT_USED,
@@ -133,6 +134,9 @@ from etswarm.algorithm.release import HOPS_NONE
 #: the new target on a neighbour site reads nearer than this (mm): d plus the slack of a
 #: stretched lattice (``search.ADJACENT_SLACK_MM``).
 CATCH_UP_NEAR_MM = 60.0
+#: A target's code (``target_code``) carries its turn in multiples of this: n < 8192, and
+#: the turn (0-5) fits the code's top three bits.
+TURN_CODE = 8192
 
 #: Codes of ``ETParams.regrowth_offsets`` in ``ci[C_REGROW_OFFSETS]``.
 REGROW_OFFSETS_KEEP = REGROWTH_OFFSETS.index("keep")
@@ -280,17 +284,28 @@ def election_rule(i, tick, ri, nb, ci, stop):  # type: ignore[no-untyped-def]
 
 
 @njit
-def find_slot(slot_info, n, tx, ty):  # type: ignore[no-untyped-def]
-    """Slot holding scale(bitmap, n) translated by (tx, ty), or -1."""
+def find_slot(slot_info, code, tx, ty):  # type: ignore[no-untyped-def]
+    """Slot holding scale(bitmap, n) turned and translated by (tx, ty), where ``code`` is
+    ``target_code``'s n + TURN_CODE * turn; -1 when there is none."""
+    n = code % TURN_CODE
+    turn = code // TURN_CODE
     for s in range(1, slot_info.shape[0]):
         if (
             slot_info[s, SLOT_USED] == 1
             and slot_info[s, SLOT_N] == n
+            and slot_info[s, SLOT_TURN] == turn
             and slot_info[s, SLOT_TX] == tx
             and slot_info[s, SLOT_TY] == ty
         ):
             return s
     return -1
+
+
+@njit(inline="always")
+def target_code(slot_info, slot):  # type: ignore[no-untyped-def]
+    """The target of ``slot`` as announced: its cell count n plus ``TURN_CODE`` times its
+    turn (16 bits, bytes 3-4 of a target message)."""
+    return slot_info[slot, SLOT_N] + TURN_CODE * slot_info[slot, SLOT_TURN]
 
 
 @njit
@@ -329,7 +344,7 @@ def adopt_target(i, tick, ri, nb, slot, epoch, leader, gene_flag, gene_nn, slot_
     ri[i, R_WALK] = WALK_NONE
     ri[i, R_ADOPTED_AT] = tick
     ri[i, R_PEND_EPOCH] = epoch
-    ri[i, R_PEND_N] = slot_info[slot, SLOT_N]
+    ri[i, R_PEND_N] = target_code(slot_info, slot)
     ri[i, R_PEND_TX] = slot_info[slot, SLOT_TX]
     ri[i, R_PEND_TY] = slot_info[slot, SLOT_TY]
     ri[i, R_LEADER] = leader

@@ -29,11 +29,12 @@ from etswarm.algorithm.memory import (
     R_WALK_TAGS,
     SLOT_N,
     SLOT_SHAPE,
+    SLOT_TURN,
     SLOT_TX,
     SLOT_TY,
 )
 from etswarm.algorithm.params import ETParams
-from etswarm.algorithm.placement import RemnantView, choose_translation
+from etswarm.algorithm.placement import RemnantView, choose_placement
 from etswarm.algorithm.silent import enclosed_tags, silent_tags
 from etswarm.algorithm.states import PLACED_STATES, STATE_NAMES, State
 from etswarm.damage import DamageSpec, apply_damage, parse_damage
@@ -50,7 +51,7 @@ from etswarm.measures.formation import (
 )
 from etswarm.seeding import stream
 from etswarm.shapes import load_shape, scale
-from etswarm.shapes.lattice import tags_to_xy
+from etswarm.shapes.lattice import tags_to_xy, turn_cells
 from etswarm.sim import Simulator
 from etswarm.sim.params import SimParams
 from etswarm.sim.world import World
@@ -231,9 +232,9 @@ class ETRun:
         for leader in ctl.pending_requests():
             row = ctl.ri[leader]
             n = int(row[R_CENSUS])
-            cells, tx, ty = self._scaled_placement(int(leader), n)
+            cells, tx, ty, turn = self._scaled_placement(int(leader), n)
             old_slot = int(row[R_TSLOT])
-            slot = ctl.answer(int(leader), cells, n, tx, ty)
+            slot = ctl.answer(int(leader), cells, n, tx, ty, turn)
             kept = ctl.slot_info[slot, SLOT_SHAPE] == ctl.slot_info[old_slot, SLOT_SHAPE]
             group = self._group_of(int(leader))
             # The robot's clock: election began, Leader declared, census concluded.
@@ -265,15 +266,16 @@ class ETRun:
             at -= 1
         self.events.insert(at, event)
 
-    def _scaled_placement(self, leader: int, n: int) -> tuple[np.ndarray, int, int]:
-        """scale(bitmap, n), translated as the Leader chooses on board
-        (``placement.choose_translation``): on a seed triangle, the Leader's own if it can,
+    def _scaled_placement(self, leader: int, n: int) -> tuple[np.ndarray, int, int, int]:
+        """scale(bitmap, n), turned and translated as the Leader chooses on board
+        (``placement.choose_placement``; (cells, tx, ty, turn)): on a seed triangle, the
+        Leader's own if it can,
         over as much of the remnant as it knows of, and off the sites that fell silent (a
         dead robot may stand there, see ``silent``). Empty when n < 3 (too small to seed).
         With ``false_alarm`` "resume", a census n equal to the cell count of the Leader's
         current target keeps that target and its translation (a false alarm)."""
         if n < 3:
-            return np.zeros((0, 2), dtype=np.int64), 0, 0
+            return np.zeros((0, 2), dtype=np.int64), 0, 0, 0
         ctl = self.controller
         slot = int(ctl.ri[leader, R_TSLOT])
         if self.config.et.false_alarm == "resume" and n == int(ctl.slot_info[slot, SLOT_N]):
@@ -281,7 +283,7 @@ class ETRun:
             # (More robots than that elect as before: a remnant with spare robots may have
             # lost some of its sites, and the spares would not be released for them.)
             tx, ty = int(ctl.slot_info[slot, SLOT_TX]), int(ctl.slot_info[slot, SLOT_TY])
-            return ctl.slot_cells[slot], tx, ty
+            return ctl.slot_cells[slot], tx, ty, int(ctl.slot_info[slot, SLOT_TURN])
         cells = scale(self.shape, min(n, self.shape.n_cells))
         lx, ly = (int(v) for v in ctl.ri[leader, [R_TAG_X, R_TAG_Y]])
         # Robots heard since the election began are the remnant's; older entries left.
@@ -310,11 +312,14 @@ class ETRun:
         view = RemnantView(known, remnant, silent, enclosed, extent, ctl.fits,
                            frozenset(old_shape) if off_shape != "any" else frozenset(),
                            off_shape == "weigh")
-        shift = choose_translation(cells, (lx, ly), view, self.config.et.placement_seeds)
-        if shift is None:
-            return cells, 0, 0
-        tx, ty = shift
-        return cells + np.array([tx, ty]), tx, ty
+        et = self.config.et
+        chosen = choose_placement(
+            cells, (lx, ly), view, et.placement_seeds, et.placement_turns == "on"
+        )
+        if chosen is None:
+            return cells, 0, 0, 0
+        turn, tx, ty = chosen
+        return turn_cells(cells, turn) + np.array([tx, ty]), tx, ty, turn
 
     def _group_of(self, robot: int) -> np.ndarray:
         for group in self._groups():

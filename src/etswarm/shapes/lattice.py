@@ -73,6 +73,17 @@ def xy_to_nearest_tag(xy: np.ndarray, spacing_mm: float = 40.0) -> np.ndarray:
     return np.stack([ra, -rb], axis=1).astype(np.int64)
 
 
+def turn_cells(cells: np.ndarray, turns: int) -> np.ndarray:
+    """``cells`` ((P, 2) int64 tags) turned ``turns`` times by 60° about tag (0, 0), each
+    turn taking every neighbour offset to the next one in :data:`NEIGHBOUR_OFFSETS`
+    ((X, Y) -> (Y, Y - X)); (P, 2) int64. A turned shape is the same shape: the lattice
+    looks the same from every 60° step."""
+    out = np.asarray(cells, dtype=np.int64).reshape(-1, 2)
+    for _ in range(turns % 6):
+        out = np.stack([out[:, 1], out[:, 1] - out[:, 0]], axis=1)
+    return out
+
+
 def lattice_distance(a: np.ndarray, b: np.ndarray) -> np.ndarray:
     """Number of lattice steps between tags ``a`` and ``b`` (broadcasting (..., 2) arrays)."""
     d = np.asarray(a, dtype=np.int64) - np.asarray(b, dtype=np.int64)
