@@ -33,7 +33,8 @@ def test_a_turned_shape_keeps_every_cell_s_neighbours() -> None:
     for turns in range(1, 6):
         turned = turn_cells(cells, turns)
         assert sorted(neighbour_counts(turned)) == sorted(neighbour_counts(cells))
-        assert not np.array_equal(sort_cells(turned - turned.min(0)), sort_cells(cells - cells.min(0)))
+        moved = sort_cells(turned - turned.min(axis=0))
+        assert not np.array_equal(moved, sort_cells(cells - cells.min(axis=0)))
 
 
 def test_the_leader_turns_the_shape_along_its_remnant() -> None:
