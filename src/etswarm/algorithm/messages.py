@@ -29,7 +29,8 @@ byte   placed robot (Inactive ..   Queued / Search robot
 Election message (kind 2; Danger and Leader robots): bytes 0-1 robot ID, 2-3 lowest ID
 heard (the leader candidate), 4 hops from it, 5-6 parent ID (0xFFFF: none), 7-8 robots
 in this robot's subtree. Target message (kind 3; relayed for a while after a scaled target
-is adopted): 0-1 robot ID, 2 epoch, 3-4 n (cells of scale(bitmap, n)), 5 tx, 6 ty (int8
+is adopted): 0-1 robot ID, 2 epoch, 3-4 the target's code (bits 0-12 n, the cells of
+scale(bitmap, n); bits 13-15 its turns of 60°, ``placement_turns``), 5 tx, 6 ty (int8
 translation, tags), 7-8 leader ID. With census ``walk``, electing robots that hold a tag
 send their status instead of their election message every other period while a walking
 Leader (status with state Leader) has been heard lately, so the walker learns their tags.
