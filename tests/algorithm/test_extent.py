@@ -28,7 +28,7 @@ from etswarm.algorithm.params import ETParams
 from etswarm.algorithm.run import ETRun, RunConfig
 from etswarm.algorithm.states import PLACED_STATES
 
-from .traced import SESSION_19_WIDENING
+from .traced import SESSION_19_WIDENING, SESSION_33_PLACEMENT
 
 TPS = 31
 
@@ -119,7 +119,8 @@ def regrown(
         RunConfig(
             shape="starfish", seed=0, max_time_s=6 * 3600, damage=("split y=mid",),
             et=ETParams(placement=placement, site_offsets="off", lost_homing="off",
-                        placement_off_shape=off_shape, **SESSION_19_WIDENING),
+                        placement_off_shape=off_shape, **SESSION_19_WIDENING,
+                        **SESSION_33_PLACEMENT),
         )
     )
     while not any(e["kind"] == "damage" for e in run.events):

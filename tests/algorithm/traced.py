@@ -11,6 +11,10 @@ SESSION_26_FORMATION = {"two_neighbour_widen_s": 0.0}
 #: with these.
 SESSION_19_WIDENING = {"widen_s": 1200.0, "capture_pinch_refusals": 2, **SESSION_26_FORMATION}
 
+#: Until session 34 a Leader kept the scaled shape in the original's orientation;
+#: regrowths traced before then place and branch as described with this.
+SESSION_33_PLACEMENT = {"placement_turns": "off"}
+
 #: Until session 32 a Leader's placement counted cells off the old shape like any other;
 #: regrowths traced before then place and branch as described with this.
-SESSION_31_PLACEMENT = {"placement_off_shape": "any"}
+SESSION_31_PLACEMENT = {"placement_off_shape": "any", **SESSION_33_PLACEMENT}

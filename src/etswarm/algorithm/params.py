@@ -376,10 +376,10 @@ class ETParams:
     #: turn whose best translation ranks first, a turned one only when it covers more of
     #: the remnant (``placement.choose_placement``). The scaled starfish laid over half a
     #: starfish in its first orientation puts an arm into an old notch; turned, fewer do.
-    #: Measured in session 34 (18 damage cases, seeds 0-19 and 20-39): 644 of 708 runs
-    #: re-formed against 637, starfish `split y` 40 of 57 against 32 (seeds 0-59). "off":
-    #: the shape keeps the original's orientation (the paper).
-    placement_turns: str = "off"
+    #: Measured in session 34 (18 damage cases, seeds 0-19, 20-39 and 60-79): 969 of 1064
+    #: runs re-formed against 960, starfish `split y` 54 of 77 against 44. "off": the
+    #: shape keeps the original's orientation (the paper).
+    placement_turns: str = "on"
     #: "on": a robot that takes a site estimates how far off its centre it stands and
     #: sends that offset; searchers aim at sites' true centres from where the placed
     #: robots really stand (``offsets``). "off": every placed robot is taken to stand on
