@@ -69,6 +69,14 @@ def test_slots_are_told_apart_by_their_turn() -> None:
     assert find_slot(slot_info, 20 + TURN_CODE, 4, -2) == -1
 
 
+def test_a_shape_too_large_for_the_turn_bits_keeps_plain_codes() -> None:
+    slot_info = np.zeros((2, SLOT_FIELDS), dtype=np.int64)
+    slot_info[0, [SLOT_N, SLOT_USED]] = (TURN_CODE + 5, 1)
+    slot_info[1, [SLOT_N, SLOT_TX, SLOT_TY, SLOT_USED]] = (TURN_CODE + 2, 0, 0, 1)
+    assert target_code(slot_info, 1) == TURN_CODE + 2
+    assert find_slot(slot_info, TURN_CODE + 2, 0, 0) == 1
+
+
 def test_placement_turns_takes_only_its_two_values() -> None:
     with pytest.raises(EtswarmError, match="placement_turns"):
         ETParams(placement_turns="sometimes")

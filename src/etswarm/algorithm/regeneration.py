@@ -287,8 +287,11 @@ def election_rule(i, tick, ri, nb, ci, stop):  # type: ignore[no-untyped-def]
 def find_slot(slot_info, code, tx, ty):  # type: ignore[no-untyped-def]
     """Slot holding scale(bitmap, n) turned and translated by (tx, ty), where ``code`` is
     ``target_code``'s n + TURN_CODE * turn; -1 when there is none."""
-    n = code % TURN_CODE
-    turn = code // TURN_CODE
+    n = code
+    turn = 0
+    if turns_coded(slot_info):
+        n = code % TURN_CODE
+        turn = code // TURN_CODE
     for s in range(1, slot_info.shape[0]):
         if (
             slot_info[s, SLOT_USED] == 1
@@ -302,9 +305,18 @@ def find_slot(slot_info, code, tx, ty):  # type: ignore[no-untyped-def]
 
 
 @njit(inline="always")
+def turns_coded(slot_info):  # type: ignore[no-untyped-def]
+    """Whether target codes carry a turn: the original shape (slot 0) has fewer than
+    ``TURN_CODE`` cells, so every n fits below it. A larger shape is never turned, and
+    its codes are n alone."""
+    return slot_info[0, SLOT_N] < TURN_CODE
+
+
+@njit(inline="always")
 def target_code(slot_info, slot):  # type: ignore[no-untyped-def]
     """The target of ``slot`` as announced: its cell count n plus ``TURN_CODE`` times its
-    turn (16 bits, bytes 3-4 of a target message)."""
+    turn (16 bits, bytes 3-4 of a target message; n alone for a shape of ``TURN_CODE``
+    cells or more, ``turns_coded``)."""
     return slot_info[slot, SLOT_N] + TURN_CODE * slot_info[slot, SLOT_TURN]
 
 

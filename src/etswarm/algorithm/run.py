@@ -35,6 +35,7 @@ from etswarm.algorithm.memory import (
 )
 from etswarm.algorithm.params import ETParams
 from etswarm.algorithm.placement import RemnantView, choose_placement
+from etswarm.algorithm.regeneration import TURN_CODE
 from etswarm.algorithm.silent import enclosed_tags, silent_tags
 from etswarm.algorithm.states import PLACED_STATES, STATE_NAMES, State
 from etswarm.damage import DamageSpec, apply_damage, parse_damage
@@ -313,9 +314,9 @@ class ETRun:
                            frozenset(old_shape) if off_shape != "any" else frozenset(),
                            off_shape == "weigh")
         et = self.config.et
-        chosen = choose_placement(
-            cells, (lx, ly), view, et.placement_seeds, et.placement_turns == "on"
-        )
+        # A shape of TURN_CODE cells or more has no room for a turn in its target code.
+        turns = et.placement_turns == "on" and self.shape.n_cells < TURN_CODE
+        chosen = choose_placement(cells, (lx, ly), view, et.placement_seeds, turns)
         if chosen is None:
             return cells, 0, 0, 0
         turn, tx, ty = chosen
