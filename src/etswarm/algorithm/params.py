@@ -378,8 +378,9 @@ class ETParams:
     #: starfish in its first orientation puts an arm into an old notch; turned, fewer do.
     #: Measured in session 34 (18 damage cases on seeds 0-19, 20-39 and 60-79, six hard
     #: cases on seeds 40-59): 1066 of 1184 runs re-formed against 1063, starfish
-    #: `split y` 66 of 97 against 54, `T` kill on seeds 40-59 13 of 20 against 20. So
-    #: it is off by default: the shape keeps the original's orientation (the paper).
+    #: `split y` 54 of 77 against 44 (seeds 0-79), `T` kill on seeds 40-59 13 of 20
+    #: against 20. So it is off by default: the shape keeps the original's orientation
+    #: (the paper).
     placement_turns: str = "off"
     #: "on": a robot that takes a site estimates how far off its centre it stands and
     #: sends that offset; searchers aim at sites' true centres from where the placed
