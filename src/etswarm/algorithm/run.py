@@ -35,7 +35,7 @@ from etswarm.algorithm.memory import (
 )
 from etswarm.algorithm.params import ETParams
 from etswarm.algorithm.placement import RemnantView, choose_placement
-from etswarm.algorithm.regeneration import TURN_CODE
+from etswarm.algorithm.regeneration import turns_coded
 from etswarm.algorithm.silent import enclosed_tags, silent_tags
 from etswarm.algorithm.states import PLACED_STATES, STATE_NAMES, State
 from etswarm.damage import DamageSpec, apply_damage, parse_damage
@@ -270,11 +270,11 @@ class ETRun:
     def _scaled_placement(self, leader: int, n: int) -> tuple[np.ndarray, int, int, int]:
         """scale(bitmap, n), turned and translated as the Leader chooses on board
         (``placement.choose_placement``; (cells, tx, ty, turn)): on a seed triangle, the
-        Leader's own if it can,
-        over as much of the remnant as it knows of, and off the sites that fell silent (a
-        dead robot may stand there, see ``silent``). Empty when n < 3 (too small to seed).
-        With ``false_alarm`` "resume", a census n equal to the cell count of the Leader's
-        current target keeps that target and its translation (a false alarm)."""
+        Leader's own if it can, over as much of the remnant as it knows of, and off the
+        sites that fell silent (a dead robot may stand there, see ``silent``). Empty when
+        n < 3 (too small to seed). With ``false_alarm`` "resume", a census n equal to the
+        cell count of the Leader's current target keeps that target, its turn and its
+        translation (a false alarm)."""
         if n < 3:
             return np.zeros((0, 2), dtype=np.int64), 0, 0, 0
         ctl = self.controller
@@ -314,8 +314,8 @@ class ETRun:
                            frozenset(old_shape) if off_shape != "any" else frozenset(),
                            off_shape == "weigh")
         et = self.config.et
-        # A shape of TURN_CODE cells or more has no room for a turn in its target code.
-        turns = et.placement_turns == "on" and self.shape.n_cells < TURN_CODE
+        # A shape too large for a turn in its target code is never turned.
+        turns = et.placement_turns == "on" and bool(turns_coded(ctl.slot_info))
         chosen = choose_placement(cells, (lx, ly), view, et.placement_seeds, turns)
         if chosen is None:
             return cells, 0, 0, 0
