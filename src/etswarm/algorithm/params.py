@@ -60,7 +60,8 @@ C_MERGE = 43  # 1: placed robots touching another remnant's shape start a joint 
 C_FALSE_ALARM = 44  # 1: an election whose census keeps the current target is a false alarm
 C_TICKS_REMEMBERED = 45  # an Active robot missing only sites remembered held this long excuses them
 C_REGROW_UNPINCH = 46  # a kept robot this many mm into a free site of the new target leaves it
-N_CI = 47
+C_RIGHT_OF_WAY = 47  # 1: a searcher keeps clear of lower-ID searchers only
+N_CI = 48
 
 F_SPACING = 0  # lattice spacing d
 F_PAIR_TOL = 1  # two references within this of d trigger a site candidate
@@ -324,6 +325,11 @@ class ETParams:
     #: A lost searcher yields to a lower-ID searcher nearby as it does on the group's edge
     #: ("on"), or only keeps clear of it ("off").
     lost_yield: str = "on"
+    #: A searcher keeps the clearance from lower-ID searchers only ("on"): higher IDs yield
+    #: to it and stand where it must pass, and in a pocket between the repository and the
+    #: shape a searcher that kept clear of them too pivoted on the spot while they waited
+    #: for it. "off": every searcher is an obstacle to keep clear of.
+    right_of_way: str = "off"
     #: Placed robots keep the searchers' memory of held sites too and pass it on: every
     #: this many transmit periods a Stable robot (the growth front four times less often)
     #: sends one 40-site chunk of it instead of its status (``site_memory``, message kind
@@ -490,7 +496,7 @@ class ETParams:
                     )
             elif f.name in (
                 "creep", "second_ring", "hole_memory", "fill_lookahead", "queue_stride",
-                "silent_sites", "lost_beacon", "lost_yield", "site_offsets",
+                "silent_sites", "lost_beacon", "lost_yield", "right_of_way", "site_offsets",
                 "report_patience", "merge_remnants",
             ):
                 if value not in ("on", "off"):
@@ -566,6 +572,7 @@ class ETParams:
         ci[C_SILENT_SITES] = 1 if self.silent_sites == "on" else 0
         ci[C_LOST_BEACON] = 1 if self.lost_beacon == "on" else 0
         ci[C_LOST_YIELD] = 1 if self.lost_yield == "on" else 0
+        ci[C_RIGHT_OF_WAY] = 1 if self.right_of_way == "on" else 0
         ci[C_RELEASE_FAR] = 1 if self.release_order == "far" else 0
         ci[C_AVOID_FOREIGN] = 1 if self.foreign_robots == "avoid" else 0
         ci[C_MERGE] = 1 if self.merge_remnants == "on" else 0

@@ -96,6 +96,7 @@ from etswarm.algorithm.params import (
     C_QUEUE_STRIDE,
     C_REGROW_PINCH_REFUSALS,
     C_REGROW_RETRIES,
+    C_RIGHT_OF_WAY,
     C_SECOND_RING,
     C_SETTLE_RETRIES,
     C_TICKS_COOLDOWN,
@@ -688,6 +689,7 @@ def search_rule(  # type: ignore[no-untyped-def]
     foreign_est = FAR
     look_for_beacon = ci[C_LOST_BEACON] == 1
     avoid_foreign = ci[C_AVOID_FOREIGN] == 1
+    right_of_way = ci[C_RIGHT_OF_WAY] == 1
     for m in range(slots):
         if nb[i, m, NB_ID] < 0 or tick - nb[i, m, NB_LAST] > steer_fresh:
             continue
@@ -697,7 +699,8 @@ def search_rule(  # type: ignore[no-untyped-def]
         if st == SEARCH:
             if tick - nb[i, m, NB_LAST] > SEARCHER_FRESH_TICKS:
                 continue  # a moving robot's old reading says nothing about now
-            nearest_searcher = min(nearest_searcher, est)
+            if not right_of_way or nb[i, m, NB_ID] < i:
+                nearest_searcher = min(nearest_searcher, est)
             if look_for_beacon and nb[i, m, NB_ANCHORED] & ANCHORED_BIT and est < beacon_est:
                 beacon_est = est
                 beacon_slot = m
