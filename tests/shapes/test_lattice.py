@@ -13,6 +13,7 @@ from etswarm.shapes.lattice import (
     NEIGHBOUR_OFFSETS,
     are_adjacent,
     construction_order,
+    depths,
     edge_count,
     is_connected,
     is_constructible,
@@ -119,3 +120,31 @@ def test_grown_sets_build_from_every_reported_seed(size: int, choices: list[int]
     for tri in seeds[:: max(1, len(seeds) // 5)]:
         assert len(construction_order(cells, tri)) == len(cells)
     assert edge_count(cells) * 2 == int(neighbour_counts(cells).sum())
+
+
+def test_depths_of_a_hexagon_count_the_rings_in_from_its_rim() -> None:
+    # Every site within 3 steps of (0, 0): the rim is ring 3, depth 1; the centre depth 4.
+    cells = np.array(
+        [(x, y) for x in range(-4, 5) for y in range(-4, 5) if lattice_distance(
+            np.array([x, y]), np.array([0, 0])) <= 3], dtype=np.int64
+    )
+    ring = lattice_distance(cells, np.zeros(2, dtype=np.int64))
+    assert np.array_equal(depths(cells), 4 - ring)
+    assert depths(np.zeros((0, 2), dtype=np.int64)).shape == (0,)
+
+
+@settings(max_examples=40, deadline=None)
+@given(st.integers(3, 80), st.lists(st.integers(0, 1000), min_size=1, max_size=20))
+def test_a_cell_deeper_than_the_rim_has_a_neighbour_one_step_shallower(
+    size: int, choices: list[int]
+) -> None:
+    cells = grow_cells(size, choices)
+    depth = depths(cells)
+    index = {tuple(c): k for k, c in enumerate(cells.tolist())}
+    for k, (x, y) in enumerate(cells.tolist()):
+        around = [index.get((x + ox, y + oy)) for ox, oy in NEIGHBOUR_OFFSETS.tolist()]
+        assert (depth[k] == 1) == (None in around)
+        inside = [depth[m] for m in around if m is not None]
+        assert all(abs(v - depth[k]) <= 1 for v in inside)
+        if depth[k] > 1:
+            assert min(inside) == depth[k] - 1

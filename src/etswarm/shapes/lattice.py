@@ -15,6 +15,8 @@ import math
 from collections import deque
 
 import numpy as np
+from scipy.sparse import coo_matrix
+from scipy.sparse.csgraph import shortest_path
 
 #: (6, 2) int64 tag offsets of the six neighbours, in cyclic order: (0,1) (1,1) (1,0) (0,-1)
 #: (-1,-1) (-1,0); offsets k and k+1 (mod 6) are adjacent to each other.
@@ -123,6 +125,26 @@ def neighbour_index(cells: np.ndarray) -> np.ndarray:
 def neighbour_counts(cells: np.ndarray) -> np.ndarray:
     """(P,) int64: how many of each cell's six neighbours are in ``cells`` (the NN)."""
     return (neighbour_index(cells) >= 0).sum(axis=1).astype(np.int64)
+
+
+def depths(cells: np.ndarray) -> np.ndarray:
+    """(P,) int64: each cell's depth, the fewest lattice steps from it to a site outside
+    ``cells`` (1 for a cell on the rim, one with a neighbour outside). A shape whose
+    depths are all at most 2 is drawn in strokes at most three cells wide."""
+    nbr = neighbour_index(cells)
+    p = len(nbr)
+    if p == 0:
+        return np.zeros(0, dtype=np.int64)
+    # Node p stands for the outside, joined to every rim cell.
+    inner = nbr >= 0
+    rows = np.repeat(np.arange(p), 6)[inner.ravel()]
+    cols = nbr[inner]
+    rim = np.flatnonzero(~inner.all(axis=1))
+    rows = np.concatenate([rows, rim, np.full(len(rim), p)])
+    cols = np.concatenate([cols, np.full(len(rim), p), rim])
+    graph = coo_matrix((np.ones(len(rows)), (rows, cols)), shape=(p + 1, p + 1)).tocsr()
+    steps = shortest_path(graph, unweighted=True, indices=p)
+    return steps[:p].astype(np.int64)
 
 
 def edge_count(cells: np.ndarray) -> int:
