@@ -110,7 +110,6 @@ from etswarm.algorithm.params import (
     C_EVAL_EVERY,
     C_GOSSIP_EVERY,
     C_STILL_READINGS,
-    C_TICKS_CLEAR,
     C_TICKS_NB_FRESH,
 )
 from etswarm.algorithm.placed import placed_rule
@@ -122,7 +121,7 @@ from etswarm.algorithm.regeneration import (
     join_election,
     target_code,
 )
-from etswarm.algorithm.release import queued_rule
+from etswarm.algorithm.release import clear_ticks, queued_rule
 from etswarm.algorithm.search import search_rule
 from etswarm.algorithm.silent import encode_silent, ingest_silent, note_silent, sends_silent
 from etswarm.algorithm.site_memory import encode_held, gossip_due, merge_held
@@ -378,7 +377,7 @@ def idle_wake(i, k, tick, wake, ri, in_data, ci):  # type: ignore[no-untyped-def
     qmin = ri[i, R_QMIN]
     if state == SEARCH:
         if qmin == i:
-            return max(wake, tick + ci[C_TICKS_CLEAR])
+            return max(wake, tick + clear_ticks(i, ri, ci))
         return wake
     sender = np.int64(in_data[i, k, 0]) | (np.int64(in_data[i, k, 1]) << 8)
     if sender < qmin:

@@ -42,7 +42,7 @@ from etswarm.algorithm.memory import (
 )
 from etswarm.algorithm.params import NOMINAL_MOTION, ETParams
 from etswarm.algorithm.states import State
-from etswarm.shapes.lattice import neighbour_counts, sort_cells
+from etswarm.shapes.lattice import depths, neighbour_counts, sort_cells
 
 #: Target slots allocated at first (more are added when regenerations need them).
 INITIAL_SLOTS = 8
@@ -95,7 +95,7 @@ class ETController:
         self.slot_cells: list[np.ndarray] = []
         self.ci, self.cf = et.pack(
             ticks_per_s, self.x0, self.y0, diameter_hops=int(span.sum()),
-            nominal_motion=nominal_motion,
+            nominal_motion=nominal_motion, shape_depth=int(depths(target).max(initial=0)),
         )
         # Each robot's bitmap of the tags it collected on a census walk (only Leaders use
         # it; a placeholder when the census is by spanning tree).

@@ -61,7 +61,8 @@ C_FALSE_ALARM = 44  # 1: an election whose census keeps the current target is a 
 C_TICKS_REMEMBERED = 45  # an Active robot missing only sites remembered held this long excuses them
 C_REGROW_UNPINCH = 46  # a kept robot this many mm into a free site of the new target leaves it
 C_RIGHT_OF_WAY = 47  # 1: a searcher keeps clear of lower-ID searchers only
-N_CI = 48
+C_TICKS_CLEAR_FIRST = 48  # C_TICKS_CLEAR in the first formation (a thin shape's own)
+N_CI = 49
 
 F_SPACING = 0  # lattice spacing d
 F_PAIR_TOL = 1  # two references within this of d trigger a site candidate
@@ -152,7 +153,7 @@ NON_NEGATIVE: frozenset[str] = frozenset(
         "pair_aim_relax_s", "settle_retries", "regrowth_settle_retries", "release_hold_s",
         "regrowth_hover_s", "regrowth_crowded_s", "regrowth_dive_mm",
         "dive_mm", "held_gossip_every", "queue_rank_wait_s", "capture_pinch_mm",
-        "pinch_patience_s",
+        "pinch_patience_s", "thin_depth", "thin_settle_retries",
         "capture_pinch_refusals", "regrowth_pinch_refusals", "two_neighbour_widen_s",
         "regrowth_two_neighbour_widen_s", "capture_mouth_mm", "capture_offset_mm",
         "regrowth_capture_offset_mm", "remembered_neighbours_s", "regrowth_unpinch_mm",
@@ -215,6 +216,18 @@ class ETParams:
     #: ... and when it still cannot confirm it, but the site is still near (the creep
     #: window), it stands for another ``settle_s`` with fresh readings, this many times.
     settle_retries: int = 0
+    #: The first formation of a thin shape, one whose every cell is at most this many
+    #: steps from the shape's outside (``lattice.depths``; strokes up to three cells wide
+    #: for 2), uses ``thin_settle_retries`` and ``thin_release_clear_s`` instead of
+    #: ``settle_retries`` and ``release_clear_s``. Each robot derives the shape's depth
+    #: from the gene it carries. Retries and quicker releases place thin shapes' robots
+    #: sooner, and a thin shape closes no ring of captures round a free middle, where
+    #: the errors of captures taken at the window's edge add up (on compact shapes they
+    #: formed less often: docs/algorithm.md, "Thin shapes form faster"). 0: no shape is
+    #: thin (every shape uses ``settle_retries`` and ``release_clear_s``).
+    thin_depth: int = 2
+    thin_settle_retries: int = 3
+    thin_release_clear_s: float = 10.0
     #: ... and as many times while it searches for a regenerated target (after damage).
     #: A remnant's lattice is the first formation's, often distorted, and its last sites
     #: were lost to one noisy reading on confirming (traced on `H` split x=mid seed 1);
@@ -325,10 +338,13 @@ class ETParams:
     #: A lost searcher yields to a lower-ID searcher nearby as it does on the group's edge
     #: ("on"), or only keeps clear of it ("off").
     lost_yield: str = "on"
-    #: A searcher keeps the clearance from lower-ID searchers only ("on"): higher IDs yield
-    #: to it and stand where it must pass, and in a pocket between the repository and the
-    #: shape a searcher that kept clear of them too pivoted on the spot while they waited
-    #: for it. "off": every searcher is an obstacle to keep clear of.
+    #: A searcher keeps the clearance from lower-ID searchers only ("on"): higher IDs
+    #: yield to it and stop where it must pass, and in the pocket between the queue's head
+    #: and the shape a searcher that kept clear of them pivoted on the spot for minutes
+    #: while they waited for it (traced on `T` seeds 212 and 226). Off by default: over 13
+    #: shapes (seeds 200-259) 753 of 780 formed against 769, with 38 elections that lost
+    #: nobody against 1, as searchers shove placed robots apart (docs/algorithm.md).
+    #: "off": it keeps clear of every searcher.
     right_of_way: str = "off"
     #: Placed robots keep the searchers' memory of held sites too and pass it on: every
     #: this many transmit periods a Stable robot (the growth front four times less often)
@@ -522,6 +538,7 @@ class ETParams:
         gene_y0: int,
         diameter_hops: int = 10,
         nominal_motion: tuple[float, float, float, float] = NOMINAL_MOTION,
+        shape_depth: int = 0,
     ) -> tuple[np.ndarray, np.ndarray]:
         """Return ``(ci, cf)``: int64 (N_CI,) and float64 (N_CF,) arrays for the kernel.
 
@@ -531,6 +548,9 @@ class ETParams:
         ``diameter_hops`` bounds the hops across any remnant (the shape's extent); the
         election's quiet time grows with it so a Leader is declared only after the lowest
         ID had time to cross the remnant at the configured loss.
+
+        ``shape_depth`` is the first target's greatest cell depth (``lattice.depths``; 0:
+        unknown); at most ``thin_depth``, the first formation takes the thin settings.
         """
 
         def ticks(seconds: float) -> int:
@@ -549,7 +569,11 @@ class ETParams:
         ci[C_GENE_X0] = gene_x0
         ci[C_GENE_Y0] = gene_y0
         ci[C_EVAL_EVERY] = self.eval_every_ticks
+        thin = 0 < shape_depth <= self.thin_depth
         ci[C_TICKS_CLEAR] = ticks(self.release_clear_s)
+        ci[C_TICKS_CLEAR_FIRST] = ticks(
+            self.thin_release_clear_s if thin else self.release_clear_s
+        )
         ci[C_TICKS_REGEN_QUIET] = ticks(
             max(self.election_quiet_min_s, self.election_quiet_per_hop_s * diameter_hops)
         )
@@ -583,7 +607,7 @@ class ETParams:
             else 0
         )
         ci[C_REGROW_UNPINCH] = self.regrowth_unpinch_mm
-        ci[C_SETTLE_RETRIES] = self.settle_retries
+        ci[C_SETTLE_RETRIES] = self.thin_settle_retries if thin else self.settle_retries
         ci[C_REGROW_RETRIES] = self.regrowth_settle_retries
         ci[C_TICKS_HOVER] = round(self.regrowth_hover_s * ticks_per_s)
         ci[C_TICKS_HOLD] = round(self.release_hold_s * ticks_per_s)

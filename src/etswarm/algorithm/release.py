@@ -51,6 +51,7 @@ from etswarm.algorithm.messages import HOLD_UNIT_TICKS, YIELDING_BIT
 from etswarm.algorithm.params import (
     C_RELEASE_FAR,
     C_TICKS_CLEAR,
+    C_TICKS_CLEAR_FIRST,
     C_TICKS_CROWDED,
     C_TICKS_HOLD,
     C_TICKS_NB_FRESH,
@@ -104,12 +105,19 @@ def crowded_long(i, tick, ri, ci, clear):  # type: ignore[no-untyped-def]
     return tick - (ri[i, R_CROWDED_SINCE] - 1) >= ci[C_TICKS_CROWDED]
 
 
+@njit(inline="always")
+def clear_ticks(i, ri, ci):  # type: ignore[no-untyped-def]
+    """How long Queued robot i must hear no searcher before it may leave: the first
+    formation's ``C_TICKS_CLEAR_FIRST`` (a thin shape's own), else ``C_TICKS_CLEAR``."""
+    return ci[C_TICKS_CLEAR_FIRST] if first_growth(i, ri) else ci[C_TICKS_CLEAR]
+
+
 @njit
 def queued_rule(i, tick, ri, nb, ci, limit):  # type: ignore[no-untyped-def]
     """Lowest-ID release from the repository.
 
     A Queued robot leaves (becomes Search) when its ID is the lowest among the Queued
-    robots it hears, it has heard no searching robot for ``C_TICKS_CLEAR`` ticks (so
+    robots it hears, it has heard no searching robot for ``clear_ticks`` ticks (so
     searchers never start side by side and the traffic around the repository throttles
     the release rate), no release was heard of for ``C_TICKS_RELEASE`` ticks, and fewer
     than ``limit`` robots were released so far (the count floods as a maximum; robots
@@ -202,7 +210,7 @@ def queued_rule(i, tick, ri, nb, ci, limit):  # type: ignore[no-untyped-def]
         ri[i, R_QMIN_SINCE] = tick
     # (counted from when it became the lowest, too: news it missed while asleep are old)
     rank_ends = max(ri[i, R_RANK_NEWS], ri[i, R_QMIN_SINCE]) + ci[C_TICKS_RANK_WAIT]
-    clear = tick - last_searcher >= ci[C_TICKS_CLEAR]
+    clear = tick - last_searcher >= clear_ticks(i, ri, ci)
     crowded_waits = regrowth and ci[C_TICKS_CROWDED] > 0
     if crowded_waits:
         # (called even when clear: a clear evaluation ends the crowded stretch)
@@ -231,7 +239,7 @@ def queued_rule(i, tick, ri, nb, ci, limit):  # type: ignore[no-untyped-def]
     if released >= limit:
         return NEVER
     return max(
-        last_searcher + ci[C_TICKS_CLEAR],
+        last_searcher + clear_ticks(i, ri, ci),
         ri[i, R_QMIN_SINCE] + ci[C_TICKS_QUIET],
         ri[i, R_FLOOR_SINCE] + ci[C_TICKS_RELEASE],
         rank_ends if rank_waits else 0,
