@@ -19,6 +19,8 @@ from etswarm.cli.run_command import run as run_command
 from etswarm.errors import EtswarmError
 from etswarm.shapes.lattice import NEIGHBOUR_OFFSETS
 
+from .traced import SESSION_34_FORMATION
+
 
 def hexagon_cells(radius: int) -> list[tuple[int, int]]:
     """Tags within ``radius`` lattice steps of (0, 0) (skewed axes: |x|, |y|, |x-y|)."""
@@ -128,7 +130,7 @@ def test_walk_census_on_a_split_triangle() -> None:
     config = RunConfig(
         # seed 9: both Leaders have two or more lattice neighbours in their remnants
         shape="triangle", seed=9, max_time_s=3 * 3600, damage=("split x=0 at=formed+30",),
-        census="walk",
+        census="walk", et=ETParams(**SESSION_34_FORMATION),
     )
     run = WatchedRun(config)
     summary = run.run()

@@ -30,6 +30,8 @@ from etswarm.algorithm.run import ETRun, RunConfig
 from etswarm.algorithm.site_memory import encode_held, merge_held
 from etswarm.algorithm.states import State
 
+from .traced import SESSION_34_FORMATION
+
 #: Memory window of the sender and receiver (sites), its origin (tags), gossip timing.
 WINDOW = (9, 11)
 ORIGIN = (-4, -5)
@@ -173,7 +175,8 @@ def test_remnants_of_one_split_keep_their_chunks_apart() -> None:
     with its own target. Before chunks carried their target's signature, searchers of one
     remnant filed the other's chunks over their own memory window and remembered up to 16
     free sites of their target as held; now none, at every look."""
-    run = ETRun(RunConfig(shape="H", seed=0, max_time_s=4 * 3600, damage=("split y=mid",)))
+    run = ETRun(RunConfig(shape="H", seed=0, max_time_s=4 * 3600, damage=("split y=mid",),
+                          et=ETParams(**SESSION_34_FORMATION)))
     assert run.config.et.held_gossip_every > 0  # on by default
     looks = 0
     while run.sim_time_s < 4 * 3600 - 1:

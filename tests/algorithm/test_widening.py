@@ -15,6 +15,8 @@ from etswarm.algorithm.params import (
 from etswarm.algorithm.search import dive_depth, widening_ticks
 from etswarm.errors import EtswarmError
 
+from .traced import SESSION_34_FORMATION
+
 
 def packed(**options: float) -> tuple[np.ndarray, np.ndarray]:
     ci, cf = ETParams(**options).pack(31, 0, 0)
@@ -53,8 +55,10 @@ def test_faster_widening_fills_the_last_site_sooner() -> None:
     # T seed 30 with windows widening over 20 min: its last searcher went round the
     # shape for 20 min before it could take the last site (session 20).
     slow = ETRun(RunConfig(shape="T", seed=30, max_time_s=3 * 3600,
-                           et=ETParams(widen_s=1200.0, capture_pinch_refusals=2))).run()
-    fast = ETRun(RunConfig(shape="T", seed=30, max_time_s=3 * 3600)).run()
+                           et=ETParams(widen_s=1200.0, capture_pinch_refusals=2,
+                                       **SESSION_34_FORMATION))).run()
+    fast = ETRun(RunConfig(shape="T", seed=30, max_time_s=3 * 3600,
+                           et=ETParams(**SESSION_34_FORMATION))).run()
     for summary in (slow, fast):
         assert summary["formed"] and summary["jaccard"] == 1.0
         assert summary["duplicate_tags"] == []
@@ -69,7 +73,8 @@ def test_a_tip_with_two_neighbours_gets_the_wide_window_late_in_the_first_format
     # window there (only pockets of three neighbours got it) the last searcher went round
     # the H for the rest of the 4 h run.
     def run(**options: float) -> dict:
-        config = RunConfig(shape="H", seed=62, max_time_s=4 * 3600, et=ETParams(**options))
+        config = RunConfig(shape="H", seed=62, max_time_s=4 * 3600,
+                           et=ETParams(**{**SESSION_34_FORMATION, **options}))
         return ETRun(config).run()
 
     default = run()

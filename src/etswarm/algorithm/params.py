@@ -222,10 +222,12 @@ class ETParams:
     #: ``settle_retries`` and ``release_clear_s``. Each robot derives the shape's depth
     #: from the gene it carries. Retries and quicker releases place thin shapes' robots
     #: sooner, and a thin shape closes no ring of captures round a free middle, where
-    #: the errors of captures taken at the window's edge add up (on compact shapes they
-    #: formed less often: docs/algorithm.md, "Thin shapes form faster"). 0: no shape is
-    #: thin (every shape uses ``settle_retries`` and ``release_clear_s``).
-    thin_depth: int = 2
+    #: the errors of captures taken at the window's edge add up (compact shapes formed
+    #: less often with them). With 2, first formations of `T` took a median 50.3 min
+    #: against 62.5 (seeds 200-259) and thin shapes formed as often, but after damage
+    #: `T` `remove random=0.2` re-formed 46 of 60 runs against 54 of 59, so it is off by
+    #: default (docs/algorithm.md, "Session 35"). 0: no shape is thin.
+    thin_depth: int = 0
     thin_settle_retries: int = 3
     thin_release_clear_s: float = 10.0
     #: ... and as many times while it searches for a regenerated target (after damage).
