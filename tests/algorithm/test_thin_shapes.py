@@ -1,0 +1,70 @@
+"""Thin shapes' first-formation settings (``thin_depth``): which shapes count as thin, what
+the packed constants become, and a thin formation with them on."""
+
+from __future__ import annotations
+
+import pytest
+
+from etswarm.algorithm.et_controller import ETController
+from etswarm.algorithm.params import (
+    C_REGROW_RETRIES,
+    C_SETTLE_RETRIES,
+    C_TICKS_CLEAR,
+    C_TICKS_CLEAR_FIRST,
+    ETParams,
+)
+from etswarm.algorithm.run import ETRun, RunConfig
+from etswarm.errors import EtswarmError
+from etswarm.shapes.lattice import depths
+from etswarm.shapes.shape import load_shape
+
+TPS = 31
+
+
+@pytest.mark.parametrize(
+    ("shape", "depth"), [("T", 2), ("L", 1), ("H", 2), ("starfish", 3), ("disc", 4)]
+)
+def test_library_shapes_have_the_depths_the_docs_give(shape: str, depth: int) -> None:
+    assert int(depths(load_shape(shape).cells).max()) == depth
+
+
+def test_a_thin_shape_packs_the_thin_settings_for_its_first_formation_only() -> None:
+    et = ETParams(thin_depth=2, settle_retries=1, release_clear_s=15.0)
+    thin, _ = et.pack(TPS, 0, 0, shape_depth=2)
+    assert thin[C_SETTLE_RETRIES] == et.thin_settle_retries == 3
+    assert thin[C_TICKS_CLEAR_FIRST] == round(et.thin_release_clear_s * TPS)
+    # after damage the usual settings hold
+    assert thin[C_TICKS_CLEAR] == round(15.0 * TPS)
+    assert thin[C_REGROW_RETRIES] == et.regrowth_settle_retries
+    compact, _ = et.pack(TPS, 0, 0, shape_depth=3)
+    assert compact[C_SETTLE_RETRIES] == 1
+    assert compact[C_TICKS_CLEAR_FIRST] == compact[C_TICKS_CLEAR] == round(15.0 * TPS)
+    # off (the default), and an unknown depth, change nothing
+    off, _ = ETParams(settle_retries=1).pack(TPS, 0, 0, shape_depth=2)
+    unknown, _ = et.pack(TPS, 0, 0)
+    assert (off == compact).all() and (unknown == compact).all()
+
+
+def test_the_controller_takes_the_depth_from_its_target() -> None:
+    et = ETParams(thin_depth=2)
+    t = ETController(45, load_shape("T").cells, et, TPS)
+    starfish = ETController(91, load_shape("starfish").cells, et, TPS)
+    assert t.ci[C_SETTLE_RETRIES] == 3
+    assert starfish.ci[C_SETTLE_RETRIES] == ETParams().settle_retries
+
+
+def test_the_thin_options_are_checked() -> None:
+    with pytest.raises(EtswarmError, match="thin_depth"):
+        ETParams(thin_depth=-1)
+    with pytest.raises(EtswarmError, match="thin_release_clear_s"):
+        ETParams(thin_release_clear_s=0.0)
+
+
+def test_a_t_forms_with_the_thin_settings() -> None:
+    run = ETRun(RunConfig(shape="T", seed=5, max_time_s=3 * 3600.0,
+                          et=ETParams(thin_depth=2)))
+    summary = run.run()
+    assert summary["formed"], summary["states"]
+    assert summary["jaccard"] == 1.0
+    assert summary["duplicate_tags"] == []
+    assert summary["states"]["Stable"] == 45
