@@ -210,7 +210,8 @@ def queued_rule(i, tick, ri, nb, ci, limit):  # type: ignore[no-untyped-def]
         ri[i, R_QMIN_SINCE] = tick
     # (counted from when it became the lowest, too: news it missed while asleep are old)
     rank_ends = max(ri[i, R_RANK_NEWS], ri[i, R_QMIN_SINCE]) + ci[C_TICKS_RANK_WAIT]
-    clear = tick - last_searcher >= clear_ticks(i, ri, ci)
+    clear_after = clear_ticks(i, ri, ci)
+    clear = tick - last_searcher >= clear_after
     crowded_waits = regrowth and ci[C_TICKS_CROWDED] > 0
     if crowded_waits:
         # (called even when clear: a clear evaluation ends the crowded stretch)
@@ -239,7 +240,7 @@ def queued_rule(i, tick, ri, nb, ci, limit):  # type: ignore[no-untyped-def]
     if released >= limit:
         return NEVER
     return max(
-        last_searcher + clear_ticks(i, ri, ci),
+        last_searcher + clear_after,
         ri[i, R_QMIN_SINCE] + ci[C_TICKS_QUIET],
         ri[i, R_FLOOR_SINCE] + ci[C_TICKS_RELEASE],
         rank_ends if rank_waits else 0,
