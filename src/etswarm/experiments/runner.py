@@ -4,9 +4,9 @@ By default the runs execute on a ``distributed.LocalCluster`` started here (one 
 per core, one thread each, loopback only); with ``scheduler`` they go to an existing
 cluster. Records are written by this process (the client), so workers need no access to
 the output folder. Runs whose record exists (made by the same task) are skipped; failed
-ones rerun only with ``retry_failed``. On KeyboardInterrupt the pending futures are
-cancelled, the table is written from what finished and the cluster is closed; the outcome
-says so. SIGTERM is handled the same way while the sweep runs.
+ones rerun only with ``retry_failed``. On Ctrl-C (SIGINT) or SIGTERM the pending futures
+are cancelled, the table is written from what finished and the cluster is closed; the
+outcome says so.
 """
 
 from __future__ import annotations
@@ -17,6 +17,7 @@ import logging
 import os
 import signal
 import threading
+import time
 import traceback
 from collections.abc import Iterator
 from dataclasses import dataclass
@@ -32,6 +33,8 @@ from etswarm.experiments.spec import Run, SweepSpec
 from etswarm.experiments.store import RunStore, atomic_write_bytes
 from etswarm.experiments.table import build_table, write_table
 from etswarm.experiments.task import error_record, execute_run, resolve_task
+
+POLL_S = 0.1  # s between looks for finished runs and for an interrupt
 
 
 @dataclass(frozen=True)
@@ -117,12 +120,13 @@ def check_task(spec: SweepSpec) -> None:
 @contextlib.contextmanager
 def interrupt_signals() -> Iterator[list[int]]:
     """While inside, Ctrl-C (SIGINT) and SIGTERM (a batch system's time limit, ``kill``)
-    raise KeyboardInterrupt, and each signal number is appended to the yielded list.
+    append their number to the yielded list; a second signal raises KeyboardInterrupt.
 
-    The list tells the sweep it was interrupted even when Dask's client code catches the
-    KeyboardInterrupt (it then cancels the futures, which would otherwise be stored as
-    failed runs). Only in the main thread (signal handlers cannot be set elsewhere);
-    the previous handlers are restored on exit.
+    The first signal does not raise: an exception raised at an arbitrary point can land
+    in library cleanup (a Dask future's ``__del__``), where Python prints it with a
+    traceback and carries on. The sweep polls the list instead and stops in its own time.
+    A second signal means the user will not wait, so it raises. Only in the main thread
+    (signal handlers cannot be set elsewhere); the previous handlers are restored on exit.
     """
     seen: list[int] = []
     if threading.current_thread() is not threading.main_thread():
@@ -131,7 +135,8 @@ def interrupt_signals() -> Iterator[list[int]]:
 
     def interrupt(signum: int, frame: Any) -> None:
         seen.append(signum)
-        raise KeyboardInterrupt(f"signal {signum}")
+        if len(seen) > 1:
+            raise KeyboardInterrupt(f"signal {signum}")
 
     previous = {sig: signal.signal(sig, interrupt) for sig in (signal.SIGINT, signal.SIGTERM)}
     try:
@@ -229,20 +234,25 @@ def run_sweep(
                     by_key[future.key] = run
                     pending[future.key] = future
                 try:
-                    for future in as_completed(list(pending.values())):
-                        pending.pop(future.key, None)  # frees the result on the cluster
-                        record = _collect(future, by_key[future.key], spec.task)
-                        if signals:
-                            raise KeyboardInterrupt  # futures cancelled on the way: not failures
-                        if record is None:
+                    finished = as_completed(list(pending.values()))
+                    while not finished.is_empty() and not signals:
+                        batch = finished.next_batch(block=False)
+                        if not batch:
+                            time.sleep(POLL_S)
                             continue
-                        store.write(record)
-                        ok = record["status"] == "ok"
-                        ran += 1
-                        failed += 0 if ok else 1
-                        progress.advance(ok)
+                        for future in batch:
+                            pending.pop(future.key, None)  # frees the result on the cluster
+                            record = _collect(future, by_key[future.key], spec.task)
+                            if record is None:
+                                continue
+                            store.write(record)
+                            ok = record["status"] == "ok"
+                            ran += 1
+                            failed += 0 if ok else 1
+                            progress.advance(ok)
                 except KeyboardInterrupt:
                     interrupted = True
+                if signals or interrupted:
                     client.cancel(list(pending.values()))
                 interrupted = interrupted or bool(signals)
         except KeyboardInterrupt:
