@@ -175,9 +175,12 @@ class ETParams:
     #: An Active robot goes Quasi when it hears an Active neighbour of lower TS (paper
     #: Table 1); with this set, only until it has heard one for this long without a break.
     #: A lower-TS robot waiting for a site no searcher can reach stays Active for hours,
-    #: and its Quasi neighbours then never accept a searcher at their own free sites
-    #: (10 of the 11 unformed first formations of seeds 200-259 ended with Quasi robots).
-    #: 0: the paper's rule, for ever.
+    #: and its Quasi neighbours then never accept a searcher at their own free sites (10
+    #: of the 11 unformed first formations of seeds 200-259 ended with Quasi robots). With
+    #: 600 s, 9 of those 11 formed, but 19 runs that had formed did not: robots that stop
+    #: deferring in an ordinary wait take captures out of order and close rings round free
+    #: sites (759 of 780 formed against 769); 1200 and 1800 s fix fewer and break fewer
+    #: (docs/algorithm.md, "Session 36"). 0: the paper's rule, for ever.
     quasi_patience_s: float = 0.0
     release_interval_s: float = 30.0
     release_quiet_s: float = 4.0
