@@ -205,10 +205,7 @@ R_GROWTH = R_RESUMED_AT + 1
 #: Tick + 1 since which an Active (or Quasi) robot has missed only neighbour sites its
 #: memory of held sites knows held (0: not now; ``placed.remembered_dirs``).
 R_REMEMBERED_SINCE = R_GROWTH + 1
-#: Tick + 1 since which an Active robot has heard an Active neighbour of lower TS
-#: without a break (0: not now; ``placed``, ``quasi_patience_s``).
-R_LOWER_SINCE = R_REMEMBERED_SINCE + 1
-R_FIELDS = R_LOWER_SINCE + 1
+R_FIELDS = R_REMEMBERED_SINCE + 1
 
 PHASE_NORMAL = 0
 PHASE_ELECTING = 1

@@ -62,8 +62,7 @@ C_TICKS_REMEMBERED = 45  # an Active robot missing only sites remembered held th
 C_REGROW_UNPINCH = 46  # a kept robot this many mm into a free site of the new target leaves it
 C_RIGHT_OF_WAY = 47  # 1: a searcher keeps clear of lower-ID searchers only
 C_TICKS_CLEAR_FIRST = 48  # C_TICKS_CLEAR in the first formation (a thin shape's own)
-C_TICKS_QUASI_PATIENCE = 49  # an Active robot defers to a lower-TS Active one this long (0: always)
-N_CI = 50
+N_CI = 49
 
 F_SPACING = 0  # lattice spacing d
 F_PAIR_TOL = 1  # two references within this of d trigger a site candidate
@@ -154,7 +153,7 @@ NON_NEGATIVE: frozenset[str] = frozenset(
         "pair_aim_relax_s", "settle_retries", "regrowth_settle_retries", "release_hold_s",
         "regrowth_hover_s", "regrowth_crowded_s", "regrowth_dive_mm",
         "dive_mm", "held_gossip_every", "queue_rank_wait_s", "capture_pinch_mm",
-        "pinch_patience_s", "quasi_patience_s", "thin_depth", "thin_settle_retries",
+        "pinch_patience_s", "thin_depth", "thin_settle_retries",
         "capture_pinch_refusals", "regrowth_pinch_refusals", "two_neighbour_widen_s",
         "regrowth_two_neighbour_widen_s", "capture_mouth_mm", "capture_offset_mm",
         "regrowth_capture_offset_mm", "remembered_neighbours_s", "regrowth_unpinch_mm",
@@ -172,16 +171,6 @@ class ETParams:
     neighbour_timeout_s: float = 2.5
     danger_timeout_s: float = 8.0
     quasi_s: float = 4.0
-    #: An Active robot goes Quasi when it hears an Active neighbour of lower TS (paper
-    #: Table 1); with this set, only until it has heard one for this long without a break.
-    #: A lower-TS robot waiting for a site no searcher can reach stays Active for hours,
-    #: and its Quasi neighbours then never accept a searcher at their own free sites (10
-    #: of the 11 unformed first formations of seeds 200-259 ended with Quasi robots). With
-    #: 600 s, 9 of those 11 formed, but 19 runs that had formed did not: robots that stop
-    #: deferring in an ordinary wait take captures out of order and close rings round free
-    #: sites (759 of 780 formed against 769); 1200 and 1800 s fix fewer and break fewer
-    #: (docs/algorithm.md, "Session 36"). 0: the paper's rule, for ever.
-    quasi_patience_s: float = 0.0
     release_interval_s: float = 30.0
     release_quiet_s: float = 4.0
     release_clear_s: float = 15.0
@@ -573,8 +562,6 @@ class ETParams:
         ci[C_TICKS_NB_FRESH] = ticks(self.neighbour_timeout_s)
         ci[C_TICKS_DANGER] = ticks(self.danger_timeout_s)
         ci[C_TICKS_QUASI] = ticks(self.quasi_s)
-        if self.quasi_patience_s > 0:
-            ci[C_TICKS_QUASI_PATIENCE] = ticks(self.quasi_patience_s)
         ci[C_TICKS_RELEASE] = ticks(self.release_interval_s)
         ci[C_TICKS_QUIET] = ticks(self.release_quiet_s)
         ci[C_TICKS_SETTLE] = ticks(self.settle_s)

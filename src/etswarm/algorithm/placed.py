@@ -31,7 +31,6 @@ from etswarm.algorithm.memory import (
     R_EPOCH,
     R_EXCUSED,
     R_HELD_EPOCH,
-    R_LOWER_SINCE,
     R_MASK,
     R_MISSING,
     R_NN,
@@ -52,7 +51,6 @@ from etswarm.algorithm.params import (
     C_TICKS_DANGER,
     C_TICKS_NB_FRESH,
     C_TICKS_QUASI,
-    C_TICKS_QUASI_PATIENCE,
     C_TICKS_REGEN_QUIET,
     C_TICKS_REMEMBERED,
     F_SPACING,
@@ -147,14 +145,6 @@ def excuse_remembered(i, tick, ri, missing, held_i, ox, oy, ci):  # type: ignore
 
 
 @njit
-def outwaited(i, tick, ri, ci):  # type: ignore[no-untyped-def]
-    """True when Active robot i has deferred to lower-TS Active neighbours for the
-    ``quasi_patience_s`` ticks (never when it is 0): it then stays Active beside them."""
-    patience = ci[C_TICKS_QUASI_PATIENCE]
-    return patience > 0 and tick - (ri[i, R_LOWER_SINCE] - 1) >= patience
-
-
-@njit
 def placed_rule(i, tick, ri, nb, nb_dist, gene, ci, cf, held_i, ox, oy):  # type: ignore[no-untyped-def]
     """Inactive -> Active -> Quasi/Stable, and Stable -> Danger (paper Table 1); ``gene``
     holds the gene flags of the robot's target (GX, GY), ``held_i`` the robot's memory of
@@ -213,7 +203,6 @@ def placed_rule(i, tick, ri, nb, nb_dist, gene, ci, cf, held_i, ox, oy):  # type
         refine_offset(i, tick, nb, nb_dist, ri, cf[F_SPACING])
 
     if state == INACTIVE:
-        ri[i, R_LOWER_SINCE] = 0
         if witnessed_stable:
             set_state(i, ri, ACTIVE, tick)
         elif any_active:
@@ -221,15 +210,10 @@ def placed_rule(i, tick, ri, nb, nb_dist, gene, ci, cf, held_i, ox, oy):  # type
         elif tick - ri[i, R_SINCE] > INACTIVE_PATIENCE_TICKS:
             set_state(i, ri, ACTIVE, tick)
     elif state == ACTIVE:
-        if not lower_active:
-            ri[i, R_LOWER_SINCE] = 0
-        elif ri[i, R_LOWER_SINCE] == 0:
-            ri[i, R_LOWER_SINCE] = tick + 1
         if count >= nn:
             set_state(i, ri, STABLE, tick)
             ri[i, R_BELOW_SINCE] = -1
-            ri[i, R_LOWER_SINCE] = 0
-        elif lower_active and not outwaited(i, tick, ri, ci):
+        elif lower_active:
             set_state(i, ri, QUASI, tick)
             ri[i, R_QUASI_UNTIL] = tick + ci[C_TICKS_QUASI]
     elif state == QUASI:
