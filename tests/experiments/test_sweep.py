@@ -200,16 +200,22 @@ def test_dry_run_counts_runs_without_running(
 @pytest.mark.parametrize("sig", [signal.SIGINT, signal.SIGTERM])
 def test_interrupt_signals_are_remembered_and_handlers_restored(sig: int) -> None:
     """The first signal is only recorded (raising it could land in library cleanup, which
-    prints a traceback); a second one raises; the old handlers come back on exit."""
+    prints a traceback); a second one raises while armed; the old handlers come back."""
     before = signal.getsignal(sig)
-    with interrupt_signals() as seen:
+
+    def send_and_wait(seen: list[int], count: int) -> None:
         os.kill(os.getpid(), sig)
         deadline = time.monotonic() + 5
-        while not seen and time.monotonic() < deadline:
+        while len(seen) < count and time.monotonic() < deadline:
             time.sleep(0.01)
-        assert seen == [sig]
+
+    with interrupt_signals() as interrupts:
+        send_and_wait(interrupts.seen, 1)
+        send_and_wait(interrupts.seen, 2)  # not armed (a cluster starting): recorded only
+        assert interrupts.seen == [sig, sig] and interrupts
+        interrupts.armed = True
         with pytest.raises(KeyboardInterrupt):
             os.kill(os.getpid(), sig)
             time.sleep(5)  # the handler runs at once; never reached
-        assert seen == [sig, sig]
+        assert interrupts.seen == [sig, sig, sig]
     assert signal.getsignal(sig) is before

@@ -20,7 +20,7 @@ import threading
 import time
 import traceback
 from collections.abc import Iterator
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
@@ -117,30 +117,45 @@ def check_task(spec: SweepSpec) -> None:
                 )
 
 
+@dataclass
+class Interrupts:
+    """The signals a sweep received (``seen``, signal numbers in order); while ``armed``,
+    a second one raises KeyboardInterrupt."""
+
+    seen: list[int] = field(default_factory=list)
+    armed: bool = False
+
+    def __bool__(self) -> bool:
+        return bool(self.seen)
+
+
 @contextlib.contextmanager
-def interrupt_signals() -> Iterator[list[int]]:
+def interrupt_signals() -> Iterator[Interrupts]:
     """While inside, Ctrl-C (SIGINT) and SIGTERM (a batch system's time limit, ``kill``)
-    append their number to the yielded list; a second signal raises KeyboardInterrupt.
+    are recorded in the yielded ``Interrupts``; a second one raises KeyboardInterrupt
+    while it is ``armed``.
 
     The first signal does not raise: an exception raised at an arbitrary point can land
     in library cleanup (a Dask future's ``__del__``), where Python prints it with a
-    traceback and carries on. The sweep polls the list instead and stops in its own time.
-    A second signal means the user will not wait, so it raises. Only in the main thread
+    traceback and carries on. The sweep polls for it instead and stops in its own time.
+    A second signal means the user will not wait, so it raises, but only while the sweep
+    is armed (collecting results): raised while a cluster starts or closes, it leaves
+    Dask a half-made cluster to close at exit, with a traceback. Only in the main thread
     (signal handlers cannot be set elsewhere); the previous handlers are restored on exit.
     """
-    seen: list[int] = []
+    interrupts = Interrupts()
     if threading.current_thread() is not threading.main_thread():
-        yield seen
+        yield interrupts
         return
 
     def interrupt(signum: int, frame: Any) -> None:
-        seen.append(signum)
-        if len(seen) > 1:
+        interrupts.seen.append(signum)
+        if interrupts.armed and len(interrupts.seen) > 1:
             raise KeyboardInterrupt(f"signal {signum}")
 
     previous = {sig: signal.signal(sig, interrupt) for sig in (signal.SIGINT, signal.SIGTERM)}
     try:
-        yield seen
+        yield interrupts
     finally:
         for sig, handler in previous.items():
             signal.signal(sig, handler)
@@ -233,6 +248,7 @@ def run_sweep(
                     )
                     by_key[future.key] = run
                     pending[future.key] = future
+                signals.armed = True
                 try:
                     finished = as_completed(list(pending.values()))
                     while not finished.is_empty() and not signals:
@@ -252,6 +268,7 @@ def run_sweep(
                             progress.advance(ok)
                 except KeyboardInterrupt:
                     interrupted = True
+                signals.armed = False
                 if signals or interrupted:
                     client.cancel(list(pending.values()))
                 interrupted = interrupted or bool(signals)
