@@ -212,7 +212,7 @@ def test_interrupt_signals_are_remembered_and_handlers_restored(sig: int) -> Non
     with interrupt_signals() as interrupts:
         send_and_wait(interrupts.seen, 1)
         send_and_wait(interrupts.seen, 2)  # not armed (a cluster starting): recorded only
-        assert interrupts.seen == [sig, sig] and interrupts
+        assert interrupts.seen == [sig, sig]
         interrupts.armed = True
         with pytest.raises(KeyboardInterrupt):
             os.kill(os.getpid(), sig)

@@ -125,9 +125,6 @@ class Interrupts:
     seen: list[int] = field(default_factory=list)
     armed: bool = False
 
-    def __bool__(self) -> bool:
-        return bool(self.seen)
-
 
 @contextlib.contextmanager
 def interrupt_signals() -> Iterator[Interrupts]:
@@ -233,7 +230,7 @@ def run_sweep(
                 if client is not None
                 else dask_client(scheduler, workers)
             )
-            with interrupt_signals() as signals, session as client, progress:
+            with interrupt_signals() as interrupts, session as client, progress:
                 by_key: dict[Any, Run] = {}
                 pending: dict[Any, Any] = {}  # key -> future; dropped once stored
                 for run in todo:
@@ -248,10 +245,10 @@ def run_sweep(
                     )
                     by_key[future.key] = run
                     pending[future.key] = future
-                signals.armed = True
+                interrupts.armed = True
                 try:
                     finished = as_completed(list(pending.values()))
-                    while not finished.is_empty() and not signals:
+                    while not finished.is_empty() and not interrupts.seen:
                         batch = finished.next_batch(block=False)
                         if not batch:
                             time.sleep(POLL_S)
@@ -268,10 +265,10 @@ def run_sweep(
                             progress.advance(ok)
                 except KeyboardInterrupt:
                     interrupted = True
-                signals.armed = False
-                if signals or interrupted:
+                interrupts.armed = False
+                if interrupts.seen or interrupted:
                     client.cancel(list(pending.values()))
-                interrupted = interrupted or bool(signals)
+                interrupted = interrupted or bool(interrupts.seen)
         except KeyboardInterrupt:
             interrupted = True
     table = write_results(spec, store)
