@@ -8,6 +8,7 @@ import pytest
 from etswarm.algorithm.et_controller import ETController
 from etswarm.algorithm.params import (
     C_REGROW_RETRIES,
+    C_RIGHT_OF_WAY,
     C_SETTLE_RETRIES,
     C_TICKS_CLEAR,
     C_TICKS_CLEAR_FIRST,
@@ -43,6 +44,20 @@ def test_a_thin_shape_packs_the_thin_settings_for_its_first_formation_only() -> 
     off, _ = ETParams(settle_retries=1).pack(TPS, 0, 0, shape_depth=2)
     unknown, _ = et.pack(TPS, 0, 0)
     assert (off == compact).all() and (unknown == compact).all()
+
+
+def test_right_of_way_is_given_in_a_thin_first_formation_only_unless_asked_for() -> None:
+    thin = ETParams(thin_depth=2)
+    assert thin.pack(TPS, 0, 0, shape_depth=2)[0][C_RIGHT_OF_WAY] == 2  # first formation
+    assert thin.pack(TPS, 0, 0, shape_depth=3)[0][C_RIGHT_OF_WAY] == 0  # compact
+    assert ETParams().pack(TPS, 0, 0, shape_depth=2)[0][C_RIGHT_OF_WAY] == 0  # thin off
+    no_way = ETParams(thin_depth=2, thin_right_of_way="off")
+    assert no_way.pack(TPS, 0, 0, shape_depth=2)[0][C_RIGHT_OF_WAY] == 0
+    always = ETParams(thin_depth=2, right_of_way="on")
+    for depth in (2, 3):
+        assert always.pack(TPS, 0, 0, shape_depth=depth)[0][C_RIGHT_OF_WAY] == 1
+    with pytest.raises(EtswarmError, match="thin_right_of_way"):
+        ETParams(thin_right_of_way="yes")
 
 
 def test_the_controller_takes_the_depth_from_its_target() -> None:

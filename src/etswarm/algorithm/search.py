@@ -689,7 +689,7 @@ def search_rule(  # type: ignore[no-untyped-def]
     foreign_est = FAR
     look_for_beacon = ci[C_LOST_BEACON] == 1
     avoid_foreign = ci[C_AVOID_FOREIGN] == 1
-    right_of_way = ci[C_RIGHT_OF_WAY] == 1
+    right_of_way = ci[C_RIGHT_OF_WAY] == 1 or (ci[C_RIGHT_OF_WAY] == 2 and first_growth(i, ri))
     for m in range(slots):
         if nb[i, m, NB_ID] < 0 or tick - nb[i, m, NB_LAST] > steer_fresh:
             continue
