@@ -40,8 +40,8 @@ def test_a_thin_shape_packs_the_thin_settings_for_its_first_formation_only() -> 
     compact, _ = et.pack(TPS, 0, 0, shape_depth=3)
     assert compact[C_SETTLE_RETRIES] == 1
     assert compact[C_TICKS_CLEAR_FIRST] == compact[C_TICKS_CLEAR] == round(15.0 * TPS)
-    # off (the default), and an unknown depth, change nothing
-    off, _ = ETParams(settle_retries=1).pack(TPS, 0, 0, shape_depth=2)
+    # off, and an unknown depth, change nothing
+    off, _ = ETParams(thin_depth=0, settle_retries=1).pack(TPS, 0, 0, shape_depth=2)
     unknown, _ = et.pack(TPS, 0, 0)
     assert (off == compact).all() and (unknown == compact).all()
 
@@ -50,7 +50,8 @@ def test_right_of_way_is_given_in_a_thin_first_formation_only_unless_asked_for()
     thin = ETParams(thin_depth=2)
     assert thin.pack(TPS, 0, 0, shape_depth=2)[0][C_RIGHT_OF_WAY] == 2  # first formation
     assert thin.pack(TPS, 0, 0, shape_depth=3)[0][C_RIGHT_OF_WAY] == 0  # compact
-    assert ETParams().pack(TPS, 0, 0, shape_depth=2)[0][C_RIGHT_OF_WAY] == 0  # thin off
+    off = ETParams(thin_depth=0)
+    assert off.pack(TPS, 0, 0, shape_depth=2)[0][C_RIGHT_OF_WAY] == 0
     no_way = ETParams(thin_depth=2, thin_right_of_way="off")
     assert no_way.pack(TPS, 0, 0, shape_depth=2)[0][C_RIGHT_OF_WAY] == 0
     always = ETParams(thin_depth=2, right_of_way="on")
@@ -73,6 +74,10 @@ def test_the_thin_options_are_checked() -> None:
         ETParams(thin_depth=-1)
     with pytest.raises(EtswarmError, match="thin_release_clear_s"):
         ETParams(thin_release_clear_s=0.0)
+
+
+def test_thin_settings_are_the_default() -> None:
+    assert ETParams().thin_depth == 2 and ETParams().thin_right_of_way == "on"
 
 
 def test_a_t_forms_with_the_thin_settings() -> None:

@@ -224,18 +224,18 @@ class ETParams:
     #: from the gene it carries. Retries and quicker releases place thin shapes' robots
     #: sooner, and a thin shape closes no ring of captures round a free middle, where
     #: the errors of captures taken at the window's edge add up (compact shapes formed
-    #: less often with them). With 2, first formations of `T` took a median 50.3 min
-    #: against 62.5 (seeds 200-259) and thin shapes formed as often, but after damage
-    #: `T` `remove random=0.2` re-formed 46 of 60 runs against 54 of 59, so it is off by
-    #: default (docs/algorithm.md, "Session 35"). 0: no shape is thin.
-    thin_depth: int = 0
+    #: less often with them). With 2 (and ``thin_right_of_way``), first formations of
+    #: `T` took a median 43.8 min against 62.5 (seeds 200-319) and the six thin shapes
+    #: formed 715 of 720 runs; after damage their 12 cases re-formed 286 of 320 runs
+    #: against 284 of 317 (docs/algorithm.md, "Session 37"). 0: no shape is thin.
+    thin_depth: int = 2
     thin_settle_retries: int = 3
     thin_release_clear_s: float = 10.0
     #: ... and there its searchers have right of way (``right_of_way``) too: with the two
     #: above, `T` formed in a median 42.8 min against 50.3 without it (59 of 60, seeds
-    #: 200-259), and the six thin shapes 359 of 360 runs with no tag held twice
-    #: (docs/algorithm.md, "Session 37"). Compact shapes, which it cost runs, and every
-    #: regrowth keep ``right_of_way``. "off": only ``right_of_way`` decides.
+    #: 200-259), and the six thin shapes 359 of 360 runs with no tag held twice. Compact
+    #: shapes, which it cost runs, and every regrowth keep ``right_of_way``. "off": only
+    #: ``right_of_way`` decides.
     thin_right_of_way: str = "on"
     #: ... and as many times while it searches for a regenerated target (after damage).
     #: A remnant's lattice is the first formation's, often distorted, and its last sites
@@ -353,7 +353,7 @@ class ETParams:
     #: while they waited for it (traced on `T` seeds 212 and 226). Off by default: over 13
     #: shapes (seeds 200-259) 753 of 780 formed against 769, with 38 elections that lost
     #: nobody against 1, as searchers shove placed robots apart (docs/algorithm.md).
-    #: "off": it keeps clear of every searcher.
+    #: "off": it keeps clear of every searcher (but see ``thin_right_of_way``).
     right_of_way: str = "off"
     #: Placed robots keep the searchers' memory of held sites too and pass it on: every
     #: this many transmit periods a Stable robot (the growth front four times less often)
