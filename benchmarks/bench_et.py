@@ -152,15 +152,16 @@ def run_hash(run: ETRun) -> str:
 
 def hashes(
     seconds: float, sim: SimParams, shapes: list[str], seeds: list[int], layout: str,
-    damage: tuple[str, ...] = (),
+    damage: tuple[str, ...] = (), et_options: dict[str, Any] | None = None,
 ) -> None:
-    """Print the final-state hash of each (shape, seed) run of ``seconds`` simulated s."""
+    """Print the final-state hash of each (shape, seed) run of ``seconds`` simulated s
+    (``et_options``: ETParams fields, as ``--et`` gives them)."""
     tmp = Path(tempfile.mkdtemp())
     for name in shapes:
         for seed in seeds:
             run = ETRun(
                 RunConfig(shape=shape_path(name, tmp), seed=seed, max_time_s=seconds,
-                          layout=layout, damage=damage),
+                          layout=layout, damage=damage, et=ETParams(**(et_options or {}))),
                 sim_params=sim,
             )
             run.advance(round(seconds * 31))
@@ -292,7 +293,7 @@ def main() -> None:
     elif args.what == "hash":
         seeds = [int(s) for s in (args.hash_seeds or "0,1").split(",")]
         hashes(args.seconds, sim, (args.shapes or "T,disc1000").split(","), seeds,
-               args.layout or "cluster", tuple(args.damage))
+               args.layout or "cluster", tuple(args.damage), dict(args.et))
     else:
         shapes = (args.shapes or "T,dumbbell,starfish").split(",")
         formation(args.seeds, shapes, args.max_time, args.jobs, dict(args.et), args.first_seed,

@@ -61,12 +61,24 @@ def test_right_of_way_is_given_in_a_thin_first_formation_only_unless_asked_for()
         ETParams(thin_right_of_way="yes")
 
 
-def test_the_controller_takes_the_depth_from_its_target() -> None:
+def test_the_controller_takes_the_depth_and_size_from_its_target() -> None:
     et = ETParams(thin_depth=2)
     t = ETController(45, load_shape("T").cells, et, TPS)
     starfish = ETController(91, load_shape("starfish").cells, et, TPS)
-    assert t.ci[C_SETTLE_RETRIES] == 3
-    assert starfish.ci[C_SETTLE_RETRIES] == ETParams().settle_retries
+    big_h = ETController(321, load_shape("bigH").cells, et, TPS)  # thin, but large
+    assert int(depths(load_shape("bigH").cells).max()) <= 2
+    assert t.ci[C_SETTLE_RETRIES] == 3 and t.ci[C_RIGHT_OF_WAY] == 2
+    for compact_or_large in (starfish, big_h):
+        assert compact_or_large.ci[C_SETTLE_RETRIES] == ETParams().settle_retries
+        assert compact_or_large.ci[C_RIGHT_OF_WAY] == 0
+
+
+def test_a_thin_shape_larger_than_the_limit_packs_the_usual_settings() -> None:
+    et = ETParams(thin_depth=2, thin_max_cells=100)
+    assert et.pack(TPS, 0, 0, shape_depth=2, shape_cells=100)[0][C_SETTLE_RETRIES] == 3
+    large, _ = et.pack(TPS, 0, 0, shape_depth=2, shape_cells=101)
+    off, _ = ETParams(thin_depth=0).pack(TPS, 0, 0, shape_depth=2, shape_cells=101)
+    assert (large == off).all()
 
 
 def test_the_thin_options_are_checked() -> None:

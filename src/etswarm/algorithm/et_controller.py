@@ -96,6 +96,7 @@ class ETController:
         self.ci, self.cf = et.pack(
             ticks_per_s, self.x0, self.y0, diameter_hops=int(span.sum()),
             nominal_motion=nominal_motion, shape_depth=int(depths(target).max(initial=0)),
+            shape_cells=len(target),
         )
         # Each robot's bitmap of the tags it collected on a census walk (only Leaders use
         # it; a placeholder when the census is by spanning tree).

@@ -229,6 +229,10 @@ class ETParams:
     #: formed 715 of 720 runs; after damage their 12 cases re-formed 286 of 320 runs
     #: against 284 of 317 (docs/algorithm.md, "Session 37"). 0: no shape is thin.
     thin_depth: int = 2
+    #: ... and of at most this many cells: on bigH (321 cells, strokes 3 wide, from the
+    #: cluster, 12 h) the thin settings formed 6 of 20 runs against 14, with two tags held
+    #: twice and 19 elections that lost nobody; the thin shapes they help have 15-50.
+    thin_max_cells: int = 100
     thin_settle_retries: int = 3
     thin_release_clear_s: float = 10.0
     #: ... and there its searchers have right of way (``right_of_way``) too: with the two
@@ -549,6 +553,7 @@ class ETParams:
         diameter_hops: int = 10,
         nominal_motion: tuple[float, float, float, float] = NOMINAL_MOTION,
         shape_depth: int = 0,
+        shape_cells: int = 0,
     ) -> tuple[np.ndarray, np.ndarray]:
         """Return ``(ci, cf)``: int64 (N_CI,) and float64 (N_CF,) arrays for the kernel.
 
@@ -560,7 +565,9 @@ class ETParams:
         ID had time to cross the remnant at the configured loss.
 
         ``shape_depth`` is the first target's greatest cell depth (``lattice.depths``; 0:
-        unknown); at most ``thin_depth``, the first formation takes the thin settings.
+        unknown) and ``shape_cells`` its cell count (0: unknown); a depth of at most
+        ``thin_depth`` and at most ``thin_max_cells`` cells give the first formation the
+        thin settings.
         """
 
         def ticks(seconds: float) -> int:
@@ -579,7 +586,7 @@ class ETParams:
         ci[C_GENE_X0] = gene_x0
         ci[C_GENE_Y0] = gene_y0
         ci[C_EVAL_EVERY] = self.eval_every_ticks
-        thin = 0 < shape_depth <= self.thin_depth
+        thin = 0 < shape_depth <= self.thin_depth and shape_cells <= self.thin_max_cells
         ci[C_TICKS_CLEAR] = ticks(self.release_clear_s)
         ci[C_TICKS_CLEAR_FIRST] = ticks(
             self.thin_release_clear_s if thin else self.release_clear_s
