@@ -230,8 +230,9 @@ class ETParams:
     #: against 284 of 317 (docs/algorithm.md, "Session 37"). 0: no shape is thin.
     thin_depth: int = 2
     #: ... and of at most this many cells: on bigH (321 cells, strokes 3 wide, from the
-    #: cluster, 12 h) the thin settings formed 6 of 20 runs against 14, with two tags held
-    #: twice and 19 elections that lost nobody; the thin shapes they help have 15-50.
+    #: cluster, 12 h) the thin settings formed 6 of 20 runs, with two tags held twice and
+    #: 19 elections that lost nobody (15 of 20 without their right of way, 14 without any
+    #: of them in session 31); the thin shapes they help have 15-50 cells.
     thin_max_cells: int = 100
     thin_settle_retries: int = 3
     thin_release_clear_s: float = 10.0
@@ -526,8 +527,7 @@ class ETParams:
             elif f.name in (
                 "creep", "second_ring", "hole_memory", "fill_lookahead", "queue_stride",
                 "silent_sites", "lost_beacon", "lost_yield", "right_of_way", "thin_right_of_way",
-                "site_offsets",
-                "report_patience", "merge_remnants",
+                "site_offsets", "report_patience", "merge_remnants",
             ):
                 if value not in ("on", "off"):
                     raise EtswarmError(f"{f.name} must be 'on' or 'off', got {value!r}")
