@@ -139,7 +139,7 @@ def test_a_remnant_with_dead_robots_regrows_around_them() -> None:
     # a site of the scaled target the Leader chose from the robots it heard, and the
     # remnant never re-formed). T seed 0 re-forms, after one election, when its first
     # formation runs as traced (without the thin settings, the default since session 37;
-    # with them this seed's regrowth ends with searchers lost beside the remnant; seeds
+    # with them this seed's regrowth ends with small groups cut off beside it; seeds
     # 0-9: 7 of 10 since lost searchers steer home, 3 of 10 before; see the closing notes
     # for rates).
     run = ETRun(RunConfig(shape="T", seed=0, max_time_s=4 * 3600, damage=("kill random=0.1",),
