@@ -232,8 +232,10 @@ class ETParams:
     #: ... and of at most this many cells: on bigH (321 cells, strokes 3 wide, from the
     #: cluster, 12 h) the thin settings formed 6 of 20 runs, with two tags held twice and
     #: 19 elections that lost nobody (15 of 20 without their right of way, 14 without any
-    #: of them in session 31); the thin shapes they help have 15-50 cells.
-    thin_max_cells: int = 100
+    #: of them in session 31). They help shapes of 15-50 cells, and an `E` of 90 and one
+    #: of 120 (strokes 2 wide, 20 seeds: 20 and 18 formed against 19 and 12). 150 is also
+    #: the longest queue ``layout`` lays out without a note.
+    thin_max_cells: int = 150
     thin_settle_retries: int = 3
     thin_release_clear_s: float = 10.0
     #: ... and there its searchers have right of way (``right_of_way``) too: with the two
