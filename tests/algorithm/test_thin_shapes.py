@@ -12,6 +12,9 @@ from etswarm.algorithm.params import (
     C_SETTLE_RETRIES,
     C_TICKS_CLEAR,
     C_TICKS_CLEAR_FIRST,
+    RIGHT_OF_WAY_ALWAYS,
+    RIGHT_OF_WAY_FIRST_GROWTH,
+    RIGHT_OF_WAY_NEVER,
     ETParams,
 )
 from etswarm.algorithm.run import ETRun, RunConfig
@@ -48,15 +51,15 @@ def test_a_thin_shape_packs_the_thin_settings_for_its_first_formation_only() -> 
 
 def test_right_of_way_is_given_in_a_thin_first_formation_only_unless_asked_for() -> None:
     thin = ETParams(thin_depth=2)
-    assert thin.pack(TPS, 0, 0, shape_depth=2)[0][C_RIGHT_OF_WAY] == 2  # first formation
-    assert thin.pack(TPS, 0, 0, shape_depth=3)[0][C_RIGHT_OF_WAY] == 0  # compact
+    assert thin.pack(TPS, 0, 0, shape_depth=2)[0][C_RIGHT_OF_WAY] == RIGHT_OF_WAY_FIRST_GROWTH
+    assert thin.pack(TPS, 0, 0, shape_depth=3)[0][C_RIGHT_OF_WAY] == RIGHT_OF_WAY_NEVER  # compact
     off = ETParams(thin_depth=0)
-    assert off.pack(TPS, 0, 0, shape_depth=2)[0][C_RIGHT_OF_WAY] == 0
+    assert off.pack(TPS, 0, 0, shape_depth=2)[0][C_RIGHT_OF_WAY] == RIGHT_OF_WAY_NEVER
     no_way = ETParams(thin_depth=2, thin_right_of_way="off")
-    assert no_way.pack(TPS, 0, 0, shape_depth=2)[0][C_RIGHT_OF_WAY] == 0
+    assert no_way.pack(TPS, 0, 0, shape_depth=2)[0][C_RIGHT_OF_WAY] == RIGHT_OF_WAY_NEVER
     always = ETParams(thin_depth=2, right_of_way="on")
     for depth in (2, 3):
-        assert always.pack(TPS, 0, 0, shape_depth=depth)[0][C_RIGHT_OF_WAY] == 1
+        assert always.pack(TPS, 0, 0, shape_depth=depth)[0][C_RIGHT_OF_WAY] == RIGHT_OF_WAY_ALWAYS
     with pytest.raises(EtswarmError, match="thin_right_of_way"):
         ETParams(thin_right_of_way="yes")
 
@@ -67,10 +70,10 @@ def test_the_controller_takes_the_depth_and_size_from_its_target() -> None:
     starfish = ETController(91, load_shape("starfish").cells, et, TPS)
     big_h = ETController(321, load_shape("bigH").cells, et, TPS)  # thin, but large
     assert int(depths(load_shape("bigH").cells).max()) <= 2
-    assert t.ci[C_SETTLE_RETRIES] == 3 and t.ci[C_RIGHT_OF_WAY] == 2
+    assert t.ci[C_SETTLE_RETRIES] == 3 and t.ci[C_RIGHT_OF_WAY] == RIGHT_OF_WAY_FIRST_GROWTH
     for compact_or_large in (starfish, big_h):
         assert compact_or_large.ci[C_SETTLE_RETRIES] == ETParams().settle_retries
-        assert compact_or_large.ci[C_RIGHT_OF_WAY] == 0
+        assert compact_or_large.ci[C_RIGHT_OF_WAY] == RIGHT_OF_WAY_NEVER
 
 
 def test_a_thin_shape_larger_than_the_limit_packs_the_usual_settings() -> None:

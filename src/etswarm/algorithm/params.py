@@ -60,10 +60,15 @@ C_MERGE = 43  # 1: placed robots touching another remnant's shape start a joint 
 C_FALSE_ALARM = 44  # 1: an election whose census keeps the current target is a false alarm
 C_TICKS_REMEMBERED = 45  # an Active robot missing only sites remembered held this long excuses them
 C_REGROW_UNPINCH = 46  # a kept robot this many mm into a free site of the new target leaves it
-C_RIGHT_OF_WAY = 47  # a searcher keeps clear of lower-ID searchers only: 1 always, 2 in
-# the first formation alone (a thin shape's, ``thin_right_of_way``)
+C_RIGHT_OF_WAY = 47  # a searcher keeps clear of lower-ID searchers only: RIGHT_OF_WAY_*
 C_TICKS_CLEAR_FIRST = 48  # C_TICKS_CLEAR in the first formation (a thin shape's own)
 N_CI = 49
+
+#: Values of ``ci[C_RIGHT_OF_WAY]``: never, always, or in the first formation alone (a
+#: thin shape's, ``thin_right_of_way``).
+RIGHT_OF_WAY_NEVER = 0
+RIGHT_OF_WAY_ALWAYS = 1
+RIGHT_OF_WAY_FIRST_GROWTH = 2
 
 F_SPACING = 0  # lattice spacing d
 F_PAIR_TOL = 1  # two references within this of d trigger a site candidate
@@ -616,11 +621,11 @@ class ETParams:
         ci[C_LOST_BEACON] = 1 if self.lost_beacon == "on" else 0
         ci[C_LOST_YIELD] = 1 if self.lost_yield == "on" else 0
         if self.right_of_way == "on":
-            ci[C_RIGHT_OF_WAY] = 1
+            ci[C_RIGHT_OF_WAY] = RIGHT_OF_WAY_ALWAYS
         elif thin and self.thin_right_of_way == "on":
-            ci[C_RIGHT_OF_WAY] = 2  # in the first formation only
+            ci[C_RIGHT_OF_WAY] = RIGHT_OF_WAY_FIRST_GROWTH
         else:
-            ci[C_RIGHT_OF_WAY] = 0
+            ci[C_RIGHT_OF_WAY] = RIGHT_OF_WAY_NEVER
         ci[C_RELEASE_FAR] = 1 if self.release_order == "far" else 0
         ci[C_AVOID_FOREIGN] = 1 if self.foreign_robots == "avoid" else 0
         ci[C_MERGE] = 1 if self.merge_remnants == "on" else 0

@@ -131,6 +131,8 @@ from etswarm.algorithm.params import (
     LOST_HOMING_ON,
     POCKET_ON,
     POCKET_REGROWTH,
+    RIGHT_OF_WAY_ALWAYS,
+    RIGHT_OF_WAY_FIRST_GROWTH,
 )
 from etswarm.algorithm.pinch import too_far_off, would_pinch
 from etswarm.algorithm.pocket import POCKET_AFTER_TICKS, pocket_site
@@ -689,7 +691,9 @@ def search_rule(  # type: ignore[no-untyped-def]
     foreign_est = FAR
     look_for_beacon = ci[C_LOST_BEACON] == 1
     avoid_foreign = ci[C_AVOID_FOREIGN] == 1
-    right_of_way = ci[C_RIGHT_OF_WAY] == 1 or (ci[C_RIGHT_OF_WAY] == 2 and first_growth(i, ri))
+    right_of_way = ci[C_RIGHT_OF_WAY] == RIGHT_OF_WAY_ALWAYS or (
+        ci[C_RIGHT_OF_WAY] == RIGHT_OF_WAY_FIRST_GROWTH and first_growth(i, ri)
+    )
     for m in range(slots):
         if nb[i, m, NB_ID] < 0 or tick - nb[i, m, NB_LAST] > steer_fresh:
             continue
