@@ -5,6 +5,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
+from etswarm.algorithm.params import ETParams
 from etswarm.algorithm.run import ETRun, RunConfig
 from etswarm.algorithm.states import State
 from etswarm.measures.formation import duplicate_tags, min_pair_distance
@@ -106,4 +107,19 @@ def test_a_shape_of_300_cells_forms_from_the_cluster() -> None:
     stable = run.controller.states == State.STABLE
     held = {tuple(t) for t in run.controller.tags[stable].tolist()}
     assert held == {tuple(c) for c in run.target.tolist()}
+    assert min_pair_distance(run.world.pos, run.world.present) > 2 * 16.5 - 1.0
+
+
+def test_the_ring_of_o_closes_only_once_the_edge_of_its_hole_is_held() -> None:
+    # Seed 2 without the hole flag: a robot closes the ring while (-3, -2), on the hole's
+    # edge, is free; the last searcher orbits outside, and the site is left to the hole.
+    # With the flag the same seed forms.
+    plain = ETRun(RunConfig(shape="O", seed=2, max_time_s=10800, et=ETParams(hole_flag="off")))
+    summary = plain.run()
+    assert not summary["formed"]
+    assert [-3, -2] in summary["components"][0]["free_tags"]
+    run = run_formation("O", 2, max_time_s=10800)
+    summary = run.summary()
+    assert summary["formed"], summary["components"]
+    assert summary["jaccard"] == 1.0 and summary["duplicate_tags"] == []
     assert min_pair_distance(run.world.pos, run.world.present) > 2 * 16.5 - 1.0

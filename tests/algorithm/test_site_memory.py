@@ -5,6 +5,7 @@ from __future__ import annotations
 import numpy as np
 
 from etswarm.algorithm.memory import (
+    HOLE_FLAG,
     NB_EPOCH,
     NB_ID,
     NB_LAST,
@@ -124,3 +125,34 @@ def test_the_memory_keeps_what_was_heard_for_the_robots_target() -> None:
     ri[0, R_EPOCH] = 1
     remember_heard(0, 50, ri, nb, held, ORIGIN, ORIGIN)
     assert remembered(held[0]) == {(0, 3)}
+
+
+def ring_gene():  # type: ignore[no-untyped-def]
+    """Gene of an ``O``: the sites 3 to 5 steps from (0, 0) (flag 1) round a hole of the
+    sites within 2 steps (``HOLE_FLAG``), on the hexagon's grid."""
+    gene, ci = hexagon_gene()
+    for x in range(-2, 3):
+        for y in range(-2, 3):
+            if hex_distance(x, y) <= 2:
+                gene[x - ORIGIN, y - ORIGIN] = HOLE_FLAG
+    return gene, ci
+
+
+def test_closing_the_ring_round_a_hole_with_a_free_edge_site_is_refused() -> None:
+    # The ring held but for (3, 1) on the hole's edge, (4, 1), (5, 1) and (5, 2) outside
+    # it, and (-3, -1) on the hole's edge across it. Taking (4, 1) walls (3, 1) and the
+    # hole off from the outside: (-3, -1) could then be reached only through the hole,
+    # and the hole only through (3, 1).
+    gene, ci = ring_gene()
+    shape_sites = [s for r in (3, 4, 5) for s in ring(r)]
+    free = [(3, 1), (4, 1), (5, 1), (5, 2), (-3, -1)]
+    window = memory_of([s for s in shape_sites if s not in free])
+    assert shuts_in(4, 1, window, ORIGIN, ORIGIN, gene, ci)
+    # With the hole counted as the outside (no flag), the same capture would pass.
+    plain = np.where(gene == HOLE_FLAG, 0, gene).astype(np.uint8)
+    assert not shuts_in(4, 1, window, ORIGIN, ORIGIN, plain, ci)
+    # Once the hole's edge is held all round but for (3, 1), taking (3, 1) closes the
+    # hole with nothing left to fill inside it; (4, 1) still may not be taken first.
+    window = memory_of([s for s in shape_sites if s not in free[:4]])
+    assert not shuts_in(3, 1, window, ORIGIN, ORIGIN, gene, ci)
+    assert shuts_in(4, 1, window, ORIGIN, ORIGIN, gene, ci)

@@ -15,6 +15,7 @@ from etswarm.shapes.lattice import (
     construction_order,
     depths,
     edge_count,
+    enclosed_cells,
     is_connected,
     is_constructible,
     lattice_distance,
@@ -131,6 +132,33 @@ def test_depths_of_a_hexagon_count_the_rings_in_from_its_rim() -> None:
     ring = lattice_distance(cells, np.zeros(2, dtype=np.int64))
     assert np.array_equal(depths(cells), 4 - ring)
     assert depths(np.zeros((0, 2), dtype=np.int64)).shape == (0,)
+
+
+def hex_ring_shape(inner: int, outer: int) -> np.ndarray:
+    """The sites from ``inner`` to ``outer`` lattice steps from (0, 0), (P, 2) tags."""
+    span = range(-outer - 1, outer + 2)
+    return np.array(
+        [(x, y) for x in span for y in span
+         if inner <= lattice_distance(np.array([x, y]), np.zeros(2, dtype=np.int64)) <= outer],
+        dtype=np.int64,
+    )
+
+
+def test_the_holes_of_a_ring_are_the_sites_it_encloses() -> None:
+    ring = hex_ring_shape(3, 5)
+    holes = enclosed_cells(ring)
+    inside = lattice_distance(holes, np.zeros(2, dtype=np.int64))
+    assert len(holes) == 19 and inside.max() == 2  # the 1 + 6 + 12 sites within 2 steps
+    # A filled hexagon has none, nor does a ring cut open by a one-site-wide slot: the
+    # slot's sites join the middle to the outside.
+    assert len(enclosed_cells(hex_ring_shape(0, 5))) == 0
+    slot = (ring[:, 1] == 0) & (ring[:, 0] > 0)
+    assert len(enclosed_cells(ring[~slot])) == 0
+    # A gap that touches the outside only corner to corner (no lattice step) does not
+    # open it: the skewed lattice's neighbours are the six offsets, not the eight pixels.
+    corner = np.array([(x, y) for x in range(-3, 4) for y in range(-3, 4)
+                       if max(abs(x), abs(y)) == 3 and (x, y) != (3, -3)], dtype=np.int64)
+    assert len(enclosed_cells(corner)) == 25
 
 
 @settings(max_examples=40, deadline=None)

@@ -14,6 +14,7 @@ import numpy as np
 from etswarm.algorithm.controller import et_part, et_rest, et_step
 from etswarm.algorithm.layout import Layout
 from etswarm.algorithm.memory import (
+    HOLE_FLAG,
     NB_ID,
     NB_LAST,
     NB_STATE,
@@ -42,7 +43,7 @@ from etswarm.algorithm.memory import (
 )
 from etswarm.algorithm.params import NOMINAL_MOTION, ETParams
 from etswarm.algorithm.states import State
-from etswarm.shapes.lattice import depths, neighbour_counts, sort_cells
+from etswarm.shapes.lattice import depths, enclosed_cells, neighbour_counts, sort_cells
 
 #: Target slots allocated at first (more are added when regenerations need them).
 INITIAL_SLOTS = 8
@@ -138,6 +139,9 @@ class ETController:
             gx = cells[:, 0] - self.x0
             gy = cells[:, 1] - self.y0
             self.gene_flag[slot, gx, gy] = 1
+            if self.et.hole_flag == "on":
+                holes = enclosed_cells(cells)
+                self.gene_flag[slot, holes[:, 0] - self.x0, holes[:, 1] - self.y0] = HOLE_FLAG
             self.gene_nn[slot, gx, gy] = neighbour_counts(cells)
         self.slot_info[slot] = (len(cells), release_limit, tx, ty, 1, *window, slot, turn)
         key = sort_cells(cells)

@@ -16,7 +16,9 @@ memory only; the controller never reads another robot's row.
 - ``nb_dist``    (N, M) float64: last distance estimate to that neighbour, mm
 - ``gene_flag``  (S, GX, GY) uint8 and ``gene_nn`` (S, GX, GY) int8: the genes of up to S
   targets (slot 0: the original shape; later slots: scaled shapes made by regeneration) as
-  dense grids indexed by (X - ci[C_GENE_X0], Y - ci[C_GENE_Y0]); outside means flag 0
+  dense grids indexed by (X - ci[C_GENE_X0], Y - ci[C_GENE_Y0]); flag 1 on the shape,
+  ``HOLE_FLAG`` on a hole of it (``lattice.enclosed_cells``: the middle of an ``O``,
+  which the paper proposes to flag in the gene), 0 outside
 - ``slot_info``  (S, SLOT_FIELDS) int64: per target slot its cell count, release limit,
   translation and turn; a robot that hears of a scaled target (its code n + 8192 * turn,
   tx, ty; ``regeneration.target_code``) finds its slot here (the slots memoise ``scale``,
@@ -36,6 +38,10 @@ from __future__ import annotations
 import numpy as np
 
 from etswarm.algorithm.states import State
+
+#: ``gene_flag`` value of a site outside the shape that the shape encloses (a hole): no
+#: robot takes it, and free space there leads nowhere once the shape round it is closed.
+HOLE_FLAG = 2
 
 # Per-robot integer fields.
 R_STATE = 0

@@ -321,6 +321,11 @@ class ETParams:
     #: searcher's memory of every site it has heard held since it began searching ("on"),
     #: or only the sites within three steps, from the robots it hears now ("off").
     hole_memory: str = "on"
+    #: Flag the shape's holes (the middle of an ``O``) in the gene, as the paper proposes
+    #: for enclosed unfilled areas ("on"): with the hole memory, a capture must not wall a
+    #: hole off from the outside while a site on its edge is free. "off": a hole counts as
+    #: the outside, as in the paper's runs, and rings close with edge sites left free.
+    hole_flag: str = "on"
     #: With the hole memory, also refuse a capture after which the rest of the shape can
     #: no longer be filled in any order the greedy playout finds, though it could before
     #: ("on", see ``fill_order``), or look only one step ahead ("off").
@@ -532,7 +537,8 @@ class ETParams:
                         f"{f.name} must be one of {CHOICES[f.name]}, got {value!r}"
                     )
             elif f.name in (
-                "creep", "second_ring", "hole_memory", "fill_lookahead", "queue_stride",
+                "creep", "second_ring", "hole_memory", "hole_flag", "fill_lookahead",
+                "queue_stride",
                 "silent_sites", "lost_beacon", "lost_yield", "right_of_way", "thin_right_of_way",
                 "site_offsets", "report_patience", "merge_remnants",
             ):

@@ -33,6 +33,7 @@ from numba import njit
 
 from etswarm.algorithm.kernel_util import DIR_X, DIR_Y, direction_index, gene_at, is_placed
 from etswarm.algorithm.memory import (
+    HOLE_FLAG,
     NB_EPOCH,
     NB_ID,
     NB_LAST,
@@ -195,18 +196,21 @@ def remember_heard(i, tick, ri, nb, held, ox, oy):  # type: ignore[no-untyped-de
 
 
 @njit
-def reaches_outside(sx, sy, held_i, ox, oy, gene_flag, ci):  # type: ignore[no-untyped-def]
-    """Free shape site (sx, sy) is joined, through shape sites not remembered held, to a
-    site outside the shape (where searching robots come from). Unknown sites count as
-    free. Breadth-first over the window; (WX, WY) scratch."""
+def flood_from(sx, sy, held_i, ox, oy, gene_flag, ci):  # type: ignore[no-untyped-def]
+    """Breadth-first from site (sx, sy) over the sites not remembered held that are on the
+    shape or in one of its holes (``HOLE_FLAG``): (exits, free_site). ``exits``: the flood
+    reaches the outside of the shape (where searching robots come from) or the window's
+    edge (assumed open); ``free_site``: it crossed a free shape site ((sx, sy) included).
+    Unknown sites count as free. (WX, WY) scratch."""
     wx_n = held_i.shape[0]
     wy_n = held_i.shape[1]
+    if not (0 <= sx - ox < wx_n and 0 <= sy - oy < wy_n):
+        return True, False
     seen = np.zeros((wx_n, wy_n), dtype=np.uint8)
     queue_x = np.empty(wx_n * wy_n, dtype=np.int64)
     queue_y = np.empty(wx_n * wy_n, dtype=np.int64)
-    if not (0 <= sx - ox < wx_n and 0 <= sy - oy < wy_n):
-        return True
     seen[sx - ox, sy - oy] = 1
+    free_site = gene_at(gene_flag, ci, sx, sy) == 1
     queue_x[0] = sx
     queue_y[0] = sy
     head = 0
@@ -218,19 +222,30 @@ def reaches_outside(sx, sy, held_i, ox, oy, gene_flag, ci):  # type: ignore[no-u
         for k in range(6):
             nx = qx + DIR_X[k]
             ny = qy + DIR_Y[k]
-            if gene_at(gene_flag, ci, nx, ny) != 1:
-                return True
+            flag = gene_at(gene_flag, ci, nx, ny)
+            if flag != 1 and flag != HOLE_FLAG:
+                return True, free_site
             wx = nx - ox
             wy = ny - oy
             if not (0 <= wx < wx_n and 0 <= wy < wy_n):
-                return True  # beyond the window: assume the way open
+                return True, free_site  # beyond the window: assume the way open
             if seen[wx, wy] or held_i[wx, wy]:
                 continue
             seen[wx, wy] = 1
+            free_site = free_site or flag == 1
             queue_x[tail] = nx
             queue_y[tail] = ny
             tail += 1
-    return False
+    return False, free_site
+
+
+@njit
+def reaches_outside(sx, sy, held_i, ox, oy, gene_flag, ci):  # type: ignore[no-untyped-def]
+    """Free shape site (sx, sy) is joined, through shape sites not remembered held and the
+    shape's holes, to a site outside the shape (where searching robots come from). A hole
+    leads out only through free shape sites: once the ring round it is closed, a robot
+    outside cannot get in. Unknown sites count as free."""
+    return flood_from(sx, sy, held_i, ox, oy, gene_flag, ci)[0]
 
 
 @njit
@@ -259,7 +274,18 @@ def narrows_a_neighbour(cx, cy, held_i, ox, oy, gene_flag, ci, outside):  # type
     for k in range(6):
         sx = cx + DIR_X[k]
         sy = cy + DIR_Y[k]
-        if gene_at(gene_flag, ci, sx, sy) != 1 or is_held(held_i, sx, sy, ox, oy):
+        flag = gene_at(gene_flag, ci, sx, sy)
+        if is_held(held_i, sx, sy, ox, oy):
+            continue
+        if flag == HOLE_FLAG:
+            # The capture may close the ring round a hole whose edge still has free sites.
+            if outside:
+                exits, free_site = flood_from(sx, sy, held_i, ox, oy, gene_flag, ci)
+                if free_site and not exits:
+                    shut = True
+                    break
+            continue
+        if flag != 1:
             continue
         if narrowed(sx, sy, held_i, ox, oy) or (
             outside and not reaches_outside(sx, sy, held_i, ox, oy, gene_flag, ci)

@@ -15,6 +15,7 @@ import math
 from collections import deque
 
 import numpy as np
+from scipy.ndimage import label
 from scipy.sparse import coo_matrix
 from scipy.sparse.csgraph import shortest_path
 
@@ -171,6 +172,31 @@ def component_labels(cells: np.ndarray) -> np.ndarray:
                     stack.append(m)
         current += 1
     return np.asarray(labels, dtype=np.int64)
+
+
+#: The six-neighbour connectivity of tags as a 3x3 structuring element over (X, Y) index
+#: grids: entry [1 + dX, 1 + dY] is 1 for the offsets (0, ±1), (±1, 0), (1, 1), (-1, -1).
+_HEX_STRUCTURE = np.array([[1, 1, 0], [1, 1, 1], [0, 1, 1]], dtype=np.int64)
+
+
+def enclosed_cells(cells: np.ndarray) -> np.ndarray:
+    """(H, 2) int64 sorted tags of the holes of ``cells``: the sites outside the shape that
+    no path of outside sites (six-neighbour steps) joins to the far outside, such as the
+    middle of an ``O``. Empty for a shape without holes. A robot that orbits the shape
+    from outside reaches them only through free sites of the shape itself."""
+    cells = as_cells(cells)
+    if len(cells) == 0:
+        return np.zeros((0, 2), dtype=np.int64)
+    lo = cells.min(axis=0) - 1
+    hi = cells.max(axis=0) + 1
+    free = np.ones((int(hi[0] - lo[0]) + 1, int(hi[1] - lo[1]) + 1), dtype=bool)
+    rel = cells - lo
+    free[rel[:, 0], rel[:, 1]] = False
+    labels, _ = label(free, structure=_HEX_STRUCTURE)
+    # The one-site margin round the shape is free and joined all round: its label is the
+    # far outside.
+    holes = free & (labels != labels[0, 0])
+    return sort_cells(np.argwhere(holes).astype(np.int64) + lo)
 
 
 def is_connected(cells: np.ndarray) -> bool:
