@@ -17,7 +17,7 @@ import pytest
 from etswarm.algorithm.memory import NB_LAST, NB_TX, NB_TY
 from etswarm.algorithm.params import ETParams
 from etswarm.algorithm.run import ETRun, RunConfig
-from etswarm.algorithm.search import find_site, foreign, window_centre
+from etswarm.algorithm.search import NO_SITE, find_site, foreign, window_centre
 from etswarm.errors import EtswarmError
 
 from .test_pair_side import GENE_X0, WINDOW, pair_world
@@ -42,7 +42,7 @@ def site_from_pair(et: ETParams) -> tuple[bool, int, int]:
     nb, nb_dist, gene_flag, ci, cf = pair_off_the_target(et)
     held = np.zeros((5, 5), dtype=np.uint8)
     found, x, y, _ = find_site(0, 10, 0, True, 1, -1, 0, nb, nb_dist, gene_flag, ci, cf, 1.0,
-                               3, held, *WINDOW, window_centre(cf, 0), 1.0)
+                               3, held, *WINDOW, window_centre(cf, 0), 1.0, NO_SITE, NO_SITE)
     return bool(found), int(x), int(y)
 
 

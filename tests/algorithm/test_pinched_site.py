@@ -16,7 +16,7 @@ from etswarm.algorithm.memory import (
     allocate,
 )
 from etswarm.algorithm.params import ETParams
-from etswarm.algorithm.search import find_site, window_centre
+from etswarm.algorithm.search import NO_SITE, find_site, window_centre
 from etswarm.algorithm.states import State
 
 #: An empty memory of held sites (window, origin) for ``find_site``: nothing remembered.
@@ -49,7 +49,7 @@ def search_at(inner_mm: float, widen_max: float, tol_scale: float, wide_min: int
     gene, ci, cf, nb, nb_dist = pinched_table(inner_mm, widen_max)
     found, x, y, _ = find_site(
         0, 10, 0, True, -1, -1, 0, nb, nb_dist, gene, ci, cf, tol_scale, wide_min,
-        *NO_MEMORY, window_centre(cf, 0), 1.0,
+        *NO_MEMORY, window_centre(cf, 0), 1.0, NO_SITE, NO_SITE,
     )
     return found, (x, y)
 

@@ -8,7 +8,7 @@ import pytest
 
 from etswarm.algorithm.memory import NB_ID, NB_MASK, NB_STATE, NB_TX, NB_TY, allocate
 from etswarm.algorithm.params import C_GENE_X0, C_GENE_Y0, ETParams
-from etswarm.algorithm.search import closes_a_hole, in_window, open_from
+from etswarm.algorithm.search import NO_SITE, closes_a_hole, in_window, open_from
 from etswarm.algorithm.states import State
 from etswarm.errors import EtswarmError
 
@@ -164,7 +164,7 @@ def test_second_ring_pairs_find_the_site_between_them() -> None:
         gene, ci, cf, nb, nb_dist = two_reference_table(option, holder_heard=False)
         found, x, y, _ = find_site(
             0, 10, 0, False, -1, -1, 0, nb, nb_dist, gene, ci, cf, 1.0, 3, *NO_MEMORY,
-            window_centre(cf, 0), 1.0,
+            window_centre(cf, 0), 1.0, NO_SITE, NO_SITE,
         )
         assert (found, x, y) == expected
 
@@ -178,7 +178,7 @@ def test_a_site_whose_reported_neighbour_is_not_heard_is_refused_on_settling() -
     assert reported_but_unheard(0, 0, 1, 0, nb)
     found, *_ = find_site(
         0, 10, 0, True, -1, -1, 0, nb, nb_dist, gene, ci, cf, 1.0, 3, *NO_MEMORY,
-            window_centre(cf, 0), 1.0,
+            window_centre(cf, 0), 1.0, NO_SITE, NO_SITE,
     )
     assert not found
     # Once the holder of (1, 1) is heard too, the site is confirmed.
@@ -186,6 +186,6 @@ def test_a_site_whose_reported_neighbour_is_not_heard_is_refused_on_settling() -
     assert not reported_but_unheard(0, 0, 1, 0, nb)
     found, x, y, _ = find_site(
         0, 10, 0, True, -1, -1, 0, nb, nb_dist, gene, ci, cf, 1.0, 3, *NO_MEMORY,
-            window_centre(cf, 0), 1.0,
+            window_centre(cf, 0), 1.0, NO_SITE, NO_SITE,
     )
     assert (found, x, y) == (True, 0, 1)

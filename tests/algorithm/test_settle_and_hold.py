@@ -28,7 +28,7 @@ from etswarm.algorithm.messages import HOLD_UNIT_TICKS, YIELDING_BIT
 from etswarm.algorithm.params import ETParams
 from etswarm.algorithm.release import queued_rule
 from etswarm.algorithm.run import ETRun, RunConfig
-from etswarm.algorithm.search import begin_search, find_site, window_centre
+from etswarm.algorithm.search import NO_SITE, begin_search, find_site, window_centre
 from etswarm.algorithm.states import State
 from etswarm.errors import EtswarmError
 
@@ -57,7 +57,7 @@ def site_between(dist_mm: float, plain_scale: float) -> bool:
         nb_dist[0, slot] = dist
     found, x, y, _ = find_site(
         0, 10, 0, True, -1, -1, 0, nb, nb_dist, gene, ci, cf, 1.0, 3, *NO_MEMORY,
-        window_centre(cf, 0), plain_scale,
+        window_centre(cf, 0), plain_scale, NO_SITE, NO_SITE,
     )
     return bool(found) and (x, y) == (1, 1)
 

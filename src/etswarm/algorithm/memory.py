@@ -211,7 +211,14 @@ R_GROWTH = R_RESUMED_AT + 1
 #: Tick + 1 since which an Active (or Quasi) robot has missed only neighbour sites its
 #: memory of held sites knows held (0: not now; ``placed.remembered_dirs``).
 R_REMEMBERED_SINCE = R_GROWTH + 1
-R_FIELDS = R_REMEMBERED_SINCE + 1
+#: A Stable robot that hears no placed robot: 1 + the tick since which (0: it hears
+#: one; ``rejoin``). A searcher that left its site so (``R_LEFT`` 1) counts that site
+#: (``R_LEFT_X``, ``R_LEFT_Y``) free whatever its memory of held sites says.
+R_CUT_OFF_SINCE = R_REMEMBERED_SINCE + 1
+R_LEFT = R_CUT_OFF_SINCE + 1
+R_LEFT_X = R_LEFT + 1
+R_LEFT_Y = R_LEFT_X + 1
+R_FIELDS = R_LEFT_Y + 1
 
 PHASE_NORMAL = 0
 PHASE_ELECTING = 1

@@ -62,7 +62,8 @@ C_TICKS_REMEMBERED = 45  # an Active robot missing only sites remembered held th
 C_REGROW_UNPINCH = 46  # a kept robot this many mm into a free site of the new target leaves it
 C_RIGHT_OF_WAY = 47  # a searcher keeps clear of lower-ID searchers only: RIGHT_OF_WAY_*
 C_TICKS_CLEAR_FIRST = 48  # C_TICKS_CLEAR in the first formation (a thin shape's own)
-N_CI = 49
+C_TICKS_REJOIN = 49  # a Stable robot cut off this long, Stable only by excused sites, searches
+N_CI = 50
 
 #: Values of ``ci[C_RIGHT_OF_WAY]``: never, always, or in the first formation alone (a
 #: thin shape's, ``thin_right_of_way``).
@@ -163,6 +164,7 @@ NON_NEGATIVE: frozenset[str] = frozenset(
         "capture_pinch_refusals", "regrowth_pinch_refusals", "two_neighbour_widen_s",
         "regrowth_two_neighbour_widen_s", "capture_mouth_mm", "capture_offset_mm",
         "regrowth_capture_offset_mm", "remembered_neighbours_s", "regrowth_unpinch_mm",
+        "isolated_rejoin_s",
     }
 )
 #: Parameters that may take any sign.
@@ -527,6 +529,13 @@ class ETParams:
     #: (``pinch.pinches_new_target``). Whole mm; 0: every robot on a site of the new
     #: target keeps it (the paper).
     regrowth_unpinch_mm: int = 0
+    #: A Stable robot that has heard no placed robot for this long (s), and counts its
+    #: neighbours only by the sites a false alarm excused, was pushed out of their range
+    #: (searchers going round a tip shove it a little at every pass): it leaves its site
+    #: and searches, and it alone counts that site free, so it can take it again
+    #: (``rejoin``). 0: it stays, cut off (H ``split x`` seeds 0 and 6: all robots Stable,
+    #: one of them 80 mm from the rest).
+    isolated_rejoin_s: float = 120.0
 
     def __post_init__(self) -> None:
         for f in fields(self):
@@ -642,6 +651,7 @@ class ETParams:
             else 0
         )
         ci[C_REGROW_UNPINCH] = self.regrowth_unpinch_mm
+        ci[C_TICKS_REJOIN] = ticks(self.isolated_rejoin_s) if self.isolated_rejoin_s > 0 else 0
         ci[C_SETTLE_RETRIES] = self.thin_settle_retries if thin else self.settle_retries
         ci[C_REGROW_RETRIES] = self.regrowth_settle_retries
         ci[C_TICKS_HOVER] = round(self.regrowth_hover_s * ticks_per_s)

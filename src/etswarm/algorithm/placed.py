@@ -56,6 +56,7 @@ from etswarm.algorithm.params import (
     F_SPACING,
 )
 from etswarm.algorithm.regeneration import start_election
+from etswarm.algorithm.rejoin import rejoin_if_cut_off
 from etswarm.algorithm.site_memory import is_held
 
 #: Inactive robots with no Active neighbour for this many evaluations become Active.
@@ -160,12 +161,15 @@ def placed_rule(i, tick, ri, nb, nb_dist, gene, ci, cf, held_i, ox, oy):  # type
     witnessed_stable = False
     lower_active = False
     any_active = False
+    heard_placed = False  # any placed robot of its target, lately
     for m in range(slots):
         if nb[i, m, NB_ID] < 0:
             continue
         st = nb[i, m, NB_STATE]
         if not is_placed(st):
             continue
+        if nb[i, m, NB_EPOCH] == epoch and tick - nb[i, m, NB_LAST] <= fresh:
+            heard_placed = True
         k = direction_index(nb[i, m, NB_TX] - x, nb[i, m, NB_TY] - y)
         if k < 0 or nb[i, m, NB_EPOCH] != epoch:
             continue  # not a neighbour, or one still holding a tag of an older target
@@ -220,6 +224,9 @@ def placed_rule(i, tick, ri, nb, nb_dist, gene, ci, cf, held_i, ox, oy):  # type
         if tick >= ri[i, R_QUASI_UNTIL]:
             set_state(i, ri, ACTIVE, tick)
     elif state == STABLE:
+        excused_only = nn > 0 and known_dirs == 0 and count >= nn
+        if rejoin_if_cut_off(i, tick, heard_placed, excused_only, ri, ci, held_i, ox, oy):
+            return  # pushed out of its neighbours' range: it searches for its site again
         resumed = ri[i, R_RESUMED_AT]
         if count >= nn or (resumed > 0 and tick - (resumed - 1) < ci[C_TICKS_REGEN_QUIET]):
             # (just back from a false alarm, its neighbours may not all have caught up)

@@ -23,6 +23,7 @@ from etswarm.algorithm.kernel_util import (
     LEFT,
     RIGHT,
     SEARCH,
+    STABLE,
     STOP,
     direction_index,
     first_growth,
@@ -52,6 +53,9 @@ from etswarm.algorithm.memory import (
     R_HOVER_SINCE,
     R_HOVER_X,
     R_HOVER_Y,
+    R_LEFT,
+    R_LEFT_X,
+    R_LEFT_Y,
     R_LOST_SINCE,
     R_MASK,
     R_NEW_REF_MOVED,
@@ -136,7 +140,13 @@ from etswarm.algorithm.params import (
 )
 from etswarm.algorithm.pinch import too_far_off, would_pinch
 from etswarm.algorithm.pocket import POCKET_AFTER_TICKS, pocket_site
-from etswarm.algorithm.site_memory import is_held, remember_heard, shuts_in, site_taken
+from etswarm.algorithm.site_memory import (
+    forget_left_site,
+    is_held,
+    remember_heard,
+    shuts_in,
+    site_taken,
+)
 
 #: A widened candidate's heard lattice neighbours must stand within d + this (mm): a
 #: neighbour much farther is heard only now and then, and a placed robot that stops
@@ -187,6 +197,8 @@ CREEP_HOLD_TICKS = 62
 #: takes several seconds of pivoting; at the midpoint of a pair the nearest robot flips
 #: back and forth with every reading, each time for a fraction of that.
 FROM_MOVING_TICKS = 62
+#: No site (for ``find_site``'s left site: the robot left none).
+NO_SITE = -(1 << 40)
 #: A searcher that has moved this long (ticks) without steering by a robot other than its
 #: last ``memory.RECENT_REFS`` distinct references turns round (``follow_reference``).
 TRAPPED_TICKS = 31 * 300
@@ -211,6 +223,7 @@ def begin_search(i, tick, ri):  # type: ignore[no-untyped-def]
     reset_odometry(i, ri)
     ri[i, R_REF_MOVED] = 0
     ri[i, R_PINCH_REFUSED] = 0
+    ri[i, R_LEFT] = 0
     forget_recent_references(i, ri)
 
 
@@ -427,7 +440,7 @@ def window_centre(cf, at_shape):  # type: ignore[no-untyped-def]
 @njit
 def find_site(  # type: ignore[no-untyped-def]
     i, tick, since, strict, ref_id, from_id, orbit, nb, nb_dist, gene_flag, ci, cf, tol_scale,
-    wide_min, held_i, ox, oy, pair_aim, plain_scale,
+    wide_min, held_i, ox, oy, pair_aim, plain_scale, left_x, left_y,
 ):
     """Localise robot i from its placed neighbours (paper Sec. 4.1).
 
@@ -453,7 +466,9 @@ def find_site(  # type: ignore[no-untyped-def]
     ``min(tol_scale, consistency_widen_max)``, but never hear a robot of a neighbouring
     site farther than d + ``ADJACENT_SLACK_MM``. ``pair_aim`` (mm) is
     the window's centre (``window_centre``); ``plain_scale`` (>= 1) widens the plain window
-    (a settled robot's confirmation, ``settle_tol_scale``).
+    (a settled robot's confirmation, ``settle_tol_scale``). (left_x, left_y): the site robot
+    i left when it was cut off (``rejoin``; ``NO_SITE`` for none): it takes no other, and
+    its Stable neighbours stand in for the Active one it needs.
 
     Returns ``(found, x, y, min_active_ts)``; the best-fitting candidate wins.
     """
@@ -529,6 +544,8 @@ def find_site(  # type: ignore[no-untyped-def]
                 c2y = ay + DIR_Y[k2]
                 if gene_at(gene_flag, ci, cx, cy) != 1 or site_taken(i, cx, cy, nb):
                     continue
+                if left_x != NO_SITE and (cx != left_x or cy != left_y):
+                    continue  # every other memory holds the site it left: it takes that one
                 dist_a = nb_dist[i, a]
                 dist_b = nb_dist[i, b]
                 if offsets_on:
@@ -577,7 +594,9 @@ def find_site(  # type: ignore[no-untyped-def]
                         break
                     if tick - nb[i, j, NB_LAST] > fresh:
                         continue
-                    if nb[i, j, NB_STATE] == ACTIVE and direction_index(jx - cx, jy - cy) >= 0:
+                    st = nb[i, j, NB_STATE]
+                    own = st == STABLE and cx == left_x and cy == left_y
+                    if (st == ACTIVE or own) and direction_index(jx - cx, jy - cy) >= 0:
                         ts = nb[i, j, NB_TS]
                         if min_ts < 0 or ts < min_ts:
                             min_ts = ts
@@ -671,6 +690,9 @@ def search_rule(  # type: ignore[no-untyped-def]
     if new_msgs and ci[C_HOLE_MEMORY] == 1:
         remember_heard(i, tick, ri, nb, held, ox, oy)
     held_i = held[i]
+    forget_left_site(held_i, ri, i, ox, oy)
+    left_x = ri[i, R_LEFT_X] if ri[i, R_LEFT] == 1 else NO_SITE
+    left_y = ri[i, R_LEFT_Y] if ri[i, R_LEFT] == 1 else NO_SITE
     moving = motor[i] != STOP  # its command since the last tick
     integrate(i, ri, motor[i], cf)
     d = cf[F_SPACING]
@@ -793,7 +815,7 @@ def search_rule(  # type: ignore[no-untyped-def]
         wide_min = wide_minimum(at_shape, ri[i, R_GROWTH], cf)
         found, cx, cy, min_ts = find_site(
             i, tick, since, True, ref, came, orbit, nb, nb_dist, gene_flag, ci, cf, widen,
-            wide_min, held_i, ox, oy, pair_aim, cf[F_SETTLE_SCALE],
+            wide_min, held_i, ox, oy, pair_aim, cf[F_SETTLE_SCALE], left_x, left_y,
         )
         same = found and cx == ri[i, R_CAND_X] and cy == ri[i, R_CAND_Y]
         retries = ci[C_SETTLE_RETRIES] if first else ci[C_REGROW_RETRIES]
@@ -802,7 +824,7 @@ def search_rule(  # type: ignore[no-untyped-def]
             # the candidate is still near.
             near, nx, ny, _ = find_site(
                 i, tick, since, False, ref, came, orbit, nb, nb_dist, gene_flag, ci, cf,
-                CREEP_TOL_SCALE, 0, held_i, ox, oy, pair_aim, 1.0,
+                CREEP_TOL_SCALE, 0, held_i, ox, oy, pair_aim, 1.0, left_x, left_y,
             )
             if near and nx == ri[i, R_CAND_X] and ny == ri[i, R_CAND_Y]:
                 ri[i, R_SETTLE_TRIES] += 1
@@ -836,6 +858,7 @@ def search_rule(  # type: ignore[no-untyped-def]
             ri[i, R_TS] = min_ts + 1
             estimate_offset(i, tick, cx, cy, ri[i, R_SUB_SINCE], nb, nb_dist, ri, ci, d)
             ri[i, R_HAS_TAG] = 1
+            ri[i, R_LEFT] = 0
             ri[i, R_COUNT] = 0
             # It has observed no neighbour of this site yet; a mask left from a site it
             # held before a regeneration, sent before its first evaluation, would make
@@ -880,7 +903,7 @@ def search_rule(  # type: ignore[no-untyped-def]
         wide_min = wide_minimum(at_shape, ri[i, R_GROWTH], cf)
         found, cx, cy, min_ts = find_site(
             i, tick, since, False, ref, came, orbit, nb, nb_dist, gene_flag, ci, cf, widen,
-            wide_min, held_i, ox, oy, pair_aim, 1.0,
+            wide_min, held_i, ox, oy, pair_aim, 1.0, left_x, left_y,
         )
         if not found and pocket:
             found, cx, cy, min_ts = pocket_site(
@@ -898,7 +921,7 @@ def search_rule(  # type: ignore[no-untyped-def]
             recent = tick - steer_fresh
             near, nx, ny, _ = find_site(
                 i, tick, recent, False, ref, came, orbit, nb, nb_dist, gene_flag, ci, cf,
-                CREEP_TOL_SCALE, 0, held_i, ox, oy, pair_aim, 1.0,
+                CREEP_TOL_SCALE, 0, held_i, ox, oy, pair_aim, 1.0, left_x, left_y,
             )
             if near:
                 ri[i, R_CREEP_UNTIL] = tick + CREEP_HOLD_TICKS

@@ -43,6 +43,9 @@ from etswarm.algorithm.memory import (
     NB_TY,
     R_EPOCH,
     R_HELD_EPOCH,
+    R_LEFT,
+    R_LEFT_X,
+    R_LEFT_Y,
     R_TAG_X,
     R_TAG_Y,
 )
@@ -68,6 +71,18 @@ def site_taken(i, x, y, nb):  # type: ignore[no-untyped-def]
         if k >= 0 and (nb[i, j, NB_MASK] >> k) & 1:
             return True
     return False
+
+
+@njit(inline="always")
+def forget_left_site(held_i, ri, i, ox, oy):  # type: ignore[no-untyped-def]
+    """Searcher i that left its site (``R_LEFT``) clears that site from its memory of held
+    sites ((WX, WY) at tag (ox, oy)), which gossip keeps refilling."""
+    if ri[i, R_LEFT] != 1:
+        return
+    wx = ri[i, R_LEFT_X] - ox
+    wy = ri[i, R_LEFT_Y] - oy
+    if 0 <= wx < held_i.shape[0] and 0 <= wy < held_i.shape[1]:
+        held_i[wx, wy] = 0
 
 
 @njit(inline="always")

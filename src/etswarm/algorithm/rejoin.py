@@ -1,0 +1,68 @@
+"""A Stable robot pushed out of its neighbours' range leaves its site and takes it again.
+
+Searchers that go round a remnant for hours brush past the robots at its tips, and every
+brush shoves the placed robot a millimetre or so (``SimParams.still_push_share``). Traced
+on ``H`` ``split x=mid`` seed 0 (``/work/diag/s38/lone.py``): robot 31 on the tip (4, 4)
+(NN 2) drifted from 35 mm to 80 mm from its nearest neighbour between 3700 s and 5100 s.
+Elections in between found every robot, so they were false alarms and excused its missing
+neighbour sites (``regeneration.resume``). From 4860 s on every robot was Stable, robot
+31 out of everyone's range, for the last 2.6 h of the run. The same ended ``H`` ``split
+x`` seed 6, ``split y`` seed 0 and ``T`` ``kill random=0.1`` seed 5 (seeds 0-19).
+
+Such a robot has heard no placed robot of its target for ``C_TICKS_REJOIN`` and is
+Stable only by excused sites. It gives its site up and searches. Every memory of held
+sites (its own included, by gossip) still holds its tag, so no other searcher takes the
+site; the robot itself knows it left it and counts it free (``R_LEFT``). Lost at first
+(it hears nobody), it homes on where it last heard a robot and orbits the group back to
+the free site. A robot alone after damage is no such case: its missing neighbours were
+not excused, so it starts an election instead (``placed``).
+"""
+
+from __future__ import annotations
+
+from numba import njit
+
+from etswarm.algorithm.memory import (
+    R_CUT_OFF_SINCE,
+    R_EXCUSED,
+    R_LEFT,
+    R_LEFT_X,
+    R_LEFT_Y,
+    R_MISSING,
+    R_RESUMED_AT,
+    R_SEEN_FULL,
+    R_TAG_X,
+    R_TAG_Y,
+)
+from etswarm.algorithm.params import C_TICKS_REJOIN
+from etswarm.algorithm.search import begin_search
+from etswarm.algorithm.site_memory import forget_left_site
+
+
+@njit
+def rejoin_if_cut_off(i, tick, heard_placed, excused_only, ri, ci, held_i, ox, oy):  # type: ignore[no-untyped-def]
+    """Stable robot i, this evaluation: ``heard_placed`` whether it heard any placed robot
+    of its target lately, ``excused_only`` whether its count is met only with excused
+    sites. Once it has been cut off so for ``C_TICKS_REJOIN`` it leaves its site and
+    searches (returns True)."""
+    if ci[C_TICKS_REJOIN] == 0 or heard_placed or not excused_only:
+        ri[i, R_CUT_OFF_SINCE] = 0
+        return False
+    if ri[i, R_CUT_OFF_SINCE] == 0:
+        ri[i, R_CUT_OFF_SINCE] = tick + 1
+        return False
+    if tick - (ri[i, R_CUT_OFF_SINCE] - 1) < ci[C_TICKS_REJOIN]:
+        return False
+    x = ri[i, R_TAG_X]
+    y = ri[i, R_TAG_Y]
+    begin_search(i, tick, ri)
+    ri[i, R_CUT_OFF_SINCE] = 0
+    ri[i, R_EXCUSED] = 0
+    ri[i, R_MISSING] = 0
+    ri[i, R_RESUMED_AT] = 0
+    ri[i, R_SEEN_FULL] = 0
+    ri[i, R_LEFT] = 1
+    ri[i, R_LEFT_X] = x
+    ri[i, R_LEFT_Y] = y
+    forget_left_site(held_i, ri, i, ox, oy)
+    return True
