@@ -156,3 +156,18 @@ def test_closing_the_ring_round_a_hole_with_a_free_edge_site_is_refused() -> Non
     window = memory_of([s for s in shape_sites if s not in free[:4]])
     assert not shuts_in(3, 1, window, ORIGIN, ORIGIN, gene, ci)
     assert shuts_in(4, 1, window, ORIGIN, ORIGIN, gene, ci)
+
+
+def test_a_site_on_the_holes_edge_is_open_from_the_hole_side_too() -> None:
+    # Traced on O seed 4: free (3, 1) and (3, 0) on the hole's edge, (4, 0) and (5, 1)
+    # beyond, (5, 0) outside the shape. Taking (3, 1) leaves (3, 0) free neighbours only
+    # on opposite sides, (4, 0) and the hole; a site elsewhere would count as too narrow
+    # to enter, but robots reach this one from the hole as well, and pass through it.
+    gene, ci = ring_gene()
+    gene[5 - ORIGIN, 0 - ORIGIN] = 0
+    free = [(3, 1), (3, 0), (4, 0), (5, 1)]
+    shape_sites = [s for r in (3, 4, 5) for s in ring(r) if s != (5, 0)]
+    window = memory_of([s for s in shape_sites if s not in free])
+    assert not shuts_in(3, 1, window, ORIGIN, ORIGIN, gene, ci)
+    # Taking (4, 0) still walls the hole off with (3, 1) and (3, 0) free on its edge.
+    assert shuts_in(4, 0, window, ORIGIN, ORIGIN, gene, ci)

@@ -279,6 +279,17 @@ def narrowed(sx, sy, held_i, ox, oy):  # type: ignore[no-untyped-def]
 
 
 @njit
+def beside_hole(sx, sy, gene_flag, ci):  # type: ignore[no-untyped-def]
+    """Site (sx, sy) has a neighbour site in a hole of the shape: robots reach it from the
+    hole's side too, so it is never too narrow to enter (searchers go round the inside
+    of a ring as well as the outside)."""
+    holes = 0
+    for k in range(6):
+        holes += gene_at(gene_flag, ci, sx + DIR_X[k], sy + DIR_Y[k]) == HOLE_FLAG
+    return holes > 0
+
+
+@njit
 def narrows_a_neighbour(cx, cy, held_i, ox, oy, gene_flag, ci, outside):  # type: ignore[no-untyped-def]
     """Taking (cx, cy) would leave a free shape site next to it (as far as ``held_i``
     tells) without an opening of ``OPENING_SITES`` free neighbour sites, or, when
@@ -302,7 +313,7 @@ def narrows_a_neighbour(cx, cy, held_i, ox, oy, gene_flag, ci, outside):  # type
             continue
         if flag != 1:
             continue
-        if narrowed(sx, sy, held_i, ox, oy) or (
+        if (narrowed(sx, sy, held_i, ox, oy) and not beside_hole(sx, sy, gene_flag, ci)) or (
             outside and not reaches_outside(sx, sy, held_i, ox, oy, gene_flag, ci)
         ):
             shut = True
