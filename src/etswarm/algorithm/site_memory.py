@@ -292,9 +292,9 @@ def beside_hole(sx, sy, gene_flag, ci):  # type: ignore[no-untyped-def]
 @njit
 def narrows_a_neighbour(cx, cy, held_i, ox, oy, gene_flag, ci, outside):  # type: ignore[no-untyped-def]
     """Taking (cx, cy) would leave a free shape site next to it (as far as ``held_i``
-    tells) without an opening of ``OPENING_SITES`` free neighbour sites, or, when
-    ``outside``, cut off from the outside of the shape. (cx, cy) must lie in the window;
-    ``held_i`` is restored on return."""
+    tells) without an opening of ``OPENING_SITES`` free neighbour sites (unless the site
+    lies ``beside_hole``), or, when ``outside``, cut off from the outside of the shape.
+    (cx, cy) must lie in the window; ``held_i`` is restored on return."""
     held_i[cx - ox, cy - oy] = 1
     shut = False
     for k in range(6):
