@@ -97,19 +97,24 @@ def shape_path(name: str, tmp: Path) -> str:
 
 
 def speed(
-    seconds: float, sim: SimParams, shapes: tuple[str, ...] = SPEED_SHAPES, window: float = 0.0
+    seconds: float, sim: SimParams, shapes: tuple[str, ...] = SPEED_SHAPES, window: float = 0.0,
+    et_options: dict[str, Any] | None = None,
 ) -> None:
     """Print each shape's speed over ``seconds`` simulated s; with ``window`` > 0, first a
-    line per ``window`` simulated s with that stretch's speed and the robots' states."""
+    line per ``window`` simulated s with that stretch's speed and the robots' states
+    (``et_options``: ETParams fields, as ``--et`` gives them)."""
     tmp = Path(tempfile.mkdtemp())
     print(f"load average {os.getloadavg()}, threads {sim.threads}, control threads "
-          f"{sim.control_threads}, message delay {sim.message_delay_ticks}")
+          f"{sim.control_threads}, message delay {sim.message_delay_ticks}, "
+          f"ET options {et_options or 'default'}")
     header = ("shape", "robots", "sim s", "wall s", "cpu s", "robot-ticks/s", "x real")
     print("{:>10} {:>7} {:>7} {:>7} {:>7} {:>14} {:>8}".format(*header))
     for name in shapes:
         shape = shape_path(name, tmp)
         run = ETRun(
-            RunConfig(shape=shape, seed=0, max_time_s=seconds, layout="cluster"), sim_params=sim
+            RunConfig(shape=shape, seed=0, max_time_s=seconds, layout="cluster",
+                      et=ETParams(**(et_options or {}))),
+            sim_params=sim,
         )
         run.advance(31)  # compile / load the kernel outside the timing
         t0 = time.perf_counter()
@@ -184,9 +189,10 @@ def formation_run(
     shape: str, seed: int, max_time_s: float, et_options: dict[str, Any], sim: SimParams,
     layout: str = "queue",
 ) -> dict[str, Any]:
-    """The summary of one formation run."""
-    config = RunConfig(shape=shape, seed=seed, max_time_s=max_time_s, layout=layout,
-                       et=ETParams(**et_options))
+    """The summary of one formation run (``shape``: a shape argument or a name in
+    ``DISCS``)."""
+    config = RunConfig(shape=shape_path(shape, Path(tempfile.mkdtemp())), seed=seed,
+                       max_time_s=max_time_s, layout=layout, et=ETParams(**et_options))
     return ETRun(config, sim_params=sim).run()
 
 
@@ -275,7 +281,8 @@ def main() -> None:
     parser.add_argument("--jobs", type=int, default=1, help="worker processes (formation)")
     parser.add_argument(
         "--et", type=parse_option, action="append", default=[], metavar="NAME=VALUE",
-        help="An ETParams field for every formation run, e.g. pair_aim_mm=-1 (repeatable).",
+        help="An ETParams field for every formation, speed or hash run, e.g. pair_aim_mm=-1 "
+        "(repeatable).",
     )
     parser.add_argument(
         "--out", type=argparse.FileType("a"), default=None, metavar="FILE",
@@ -289,7 +296,7 @@ def main() -> None:
         parser.error(str(err))
     if args.what == "speed":
         speed(args.seconds, sim, tuple((args.shapes or ",".join(SPEED_SHAPES)).split(",")),
-              args.window)
+              args.window, dict(args.et))
     elif args.what == "hash":
         seeds = [int(s) for s in (args.hash_seeds or "0,1").split(",")]
         hashes(args.seconds, sim, (args.shapes or "T,disc1000").split(","), seeds,
