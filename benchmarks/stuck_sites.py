@@ -10,12 +10,15 @@ opposite ones (the site's mouth: 2 d = 80 mm on the ideal lattice; a 33 mm body 
 
     .venv/bin/python benchmarks/stuck_sites.py dumbbell --damage "split y=mid" --seed 5 \\
         --et capture_mouth_mm=0
-    .venv/bin/python benchmarks/stuck_sites.py --from-runs runs.jsonl --jobs 2
+    .venv/bin/python benchmarks/stuck_sites.py --from-runs runs.jsonl --jobs 2 [--probe]
 
 With ``--from-runs`` it re-runs every run of a ``bench_regeneration.py --out`` file in which
 a remnant of 6 or more robots did not re-form, and counts those remnants' free sites by
 kind: takeable, torn (below), "inactive" (every placed neighbour Inactive: the front that
-would let a searcher take it has stalled elsewhere) or "no holder" (no neighbour site held).
+would let a searcher take it has stalled elsewhere), "no pair" (no two adjacent neighbour
+sites held: it waits for another free site) or "no holder" (no neighbour site held). With
+``--probe`` it then puts a searcher of the remnant on each takeable site's best point
+(below) and reports whether it takes the site within 120 s.
 
 A neighbour nearer than about 33 mm to the site's position pinches it (no body fits);
 one farther than d + 15 mm or so stretches it (no searcher reads its pair at d).
@@ -38,7 +41,14 @@ from concurrent.futures import ProcessPoolExecutor
 import click
 import numpy as np
 
-from etswarm.algorithm.memory import R_OFF_X, R_OFF_Y, R_PINCH_REFUSED, R_SHAPE_SINCE
+from etswarm.algorithm.memory import (
+    NB_ID,
+    R_CREEP_UNTIL,
+    R_OFF_X,
+    R_OFF_Y,
+    R_PINCH_REFUSED,
+    R_SHAPE_SINCE,
+)
 from etswarm.algorithm.offsets import FINE_PER_MM
 from etswarm.algorithm.params import ETParams, parse_et_option
 from etswarm.algorithm.run import ETRun, RunConfig
@@ -52,6 +62,9 @@ MIN_ROBOTS = 6
 TAKEABLE_MM = 8.0
 #: Half-width (mm) of the square of points searched round the site's holders for its room.
 ROOM_REACH_MM = 60.0
+#: With --probe, a searcher put on a takeable site's best point has this long (simulated
+#: s) to take it.
+PROBE_S = 120.0
 
 
 def site_room(run: ETRun, group: np.ndarray, held: dict,
@@ -151,31 +164,78 @@ def remnants(run: ETRun) -> list[tuple[np.ndarray, dict, list[tuple[int, int]], 
     return out
 
 
+def has_pair(held: dict, site: tuple[int, int]) -> bool:
+    """Two adjacent neighbour sites of ``site`` are held: a searcher can localise there
+    (DESIGN: a site is added next to two adjacent placed cells)."""
+    ring = [(site[0] + dx, site[1] + dy) in held for dx, dy in NEIGHBOUR_OFFSETS]
+    return any(ring[k] and ring[(k + 1) % 6] for k in range(6))
+
+
 def site_kind(run: ETRun, group: np.ndarray, held: dict, site: tuple[int, int]) -> str:
     """"takeable", "torn", "inactive" (takeable or not, but every placed neighbour is
-    Inactive, so no searcher may take it yet) or "no holder" (no neighbour site held)."""
+    Inactive, so no searcher may take it yet), "no pair" (no two adjacent neighbour sites
+    held: it waits for a neighbour site to be taken first) or "no holder" (no neighbour
+    site held)."""
     states = run.controller.states
     holders = [held[t] for t in ((site[0] + dx, site[1] + dy) for dx, dy in NEIGHBOUR_OFFSETS)
                if t in held]
     if not holders:
         return "no holder"
+    if not has_pair(held, site):
+        return "no pair"
     if all(states[r] == State.INACTIVE for r in holders):
         return "inactive"
     return room_kind(*site_room(run, group, held, site))
 
 
-def census_of_run(task: tuple[str, str, int, float, tuple[str, ...], int]) -> tuple[str, Counter]:
-    """Re-run one run (shape, damage, seed, max time, ET options, least remnant size) and
-    count the kinds of the free sites of its remnants of at least that many robots."""
-    shape, damage, seed, max_time, et_options, min_robots = task
+def probe_site(run: ETRun, group: np.ndarray, held: dict, site: tuple[int, int],
+               searcher: int) -> str:
+    """Put ``searcher`` on the point of ``site``'s room (``site_room``), standing still
+    with an empty neighbour table, let it creep for ``PROBE_S`` and say what it did: the
+    site it took, or how far it went. This bounds what better navigation could do: a
+    searcher that does not take the site from its best point is stopped by the capture's
+    rules and readings, not by its way there. Changes the run."""
+    _, point = site_room(run, group, held, site)
+    ctl = run.controller
+    ctl.nb[searcher, :, NB_ID] = -1
+    ctl.ri[searcher, R_CREEP_UNTIL] = run.world.tick + round(2 * PROBE_S * run.ticks_per_s)
+    ctl.idle[searcher] = 0
+    run.world.pos[searcher] = point
+    run.advance(round(PROBE_S * run.ticks_per_s))
+    if ctl.states[searcher] != State.SEARCH:
+        took = tuple(int(v) for v in ctl.tags[searcher])
+        return f"robot {searcher} took {took}" + (" (this site)" if took == site else "")
+    gone = float(np.hypot(*(run.world.pos[searcher] - point)))
+    return f"robot {searcher} did not take it, {gone:.0f} mm away after {PROBE_S:.0f} s"
+
+
+def census_of_run(
+    task: tuple[str, str, int, float, tuple[str, ...], int, bool],
+) -> tuple[str, Counter, list[str]]:
+    """Re-run one run (shape, damage, seed, max time, ET options, least remnant size,
+    probe) and count the kinds of the free sites of its remnants of at least that many
+    robots; with probe, also ``probe_site`` each takeable site with a searcher of its
+    remnant (lines of what happened)."""
+    shape, damage, seed, max_time, et_options, min_robots, probe = task
     et = ETParams(**dict(parse_et_option(o) for o in et_options))
     run = ETRun(RunConfig(shape=shape, seed=seed, damage=(damage,), max_time_s=max_time, et=et))
     run.run()
     kinds: Counter = Counter()
+    probes: list[str] = []
+    takeable: list[tuple[np.ndarray, dict, tuple[int, int]]] = []
     for group, held, free, _ in remnants(run):
         if len(group) >= min_robots:
-            kinds.update(site_kind(run, group, held, site) for site in free)
-    return f"{shape} {damage} seed {seed}", kinds
+            site_kinds = [site_kind(run, group, held, site) for site in free]
+            kinds.update(site_kinds)
+            takeable += [(group, held, s) for s, k in zip(free, site_kinds, strict=True)
+                         if k == "takeable"]
+    for group, held, site in takeable if probe else []:
+        searchers = group[run.controller.states[group] == State.SEARCH]
+        if len(searchers) == 0:
+            probes.append(f"  {site}: no searcher in the remnant")
+            continue
+        probes.append(f"  {site}: " + probe_site(run, group, held, site, int(searchers[0])))
+    return f"{shape} {damage} seed {seed}", kinds, probes
 
 
 def unformed_runs(path: str, min_robots: int) -> list[tuple[str, str, int]]:
@@ -197,14 +257,19 @@ def unformed_runs(path: str, min_robots: int) -> list[tuple[str, str, int]]:
     return out
 
 
-def stall_census(path: str, max_time: float, et_options: tuple[str, ...], jobs: int) -> None:
-    """Print the kinds of free sites of every unformed run of ``path``, and the totals."""
-    tasks = [(*k, max_time, et_options, MIN_ROBOTS) for k in unformed_runs(path, MIN_ROBOTS)]
+def stall_census(path: str, max_time: float, et_options: tuple[str, ...], jobs: int,
+                 probe: bool = False) -> None:
+    """Print the kinds of free sites of every unformed run of ``path``, and the totals
+    (with ``probe``, what a searcher put on each takeable site's best point did)."""
+    tasks = [(*k, max_time, et_options, MIN_ROBOTS, probe)
+             for k in unformed_runs(path, MIN_ROBOTS)]
     total: Counter = Counter()
     only: Counter = Counter()
     with ProcessPoolExecutor(jobs) as pool:
-        for name, kinds in pool.map(census_of_run, tasks):
+        for name, kinds, probes in pool.map(census_of_run, tasks):
             click.echo(f"{name}: " + ", ".join(f"{k} {n}" for k, n in sorted(kinds.items())))
+            for line in probes:
+                click.echo(line)
             total.update(kinds)
             only["mixed" if len(kinds) > 1 else next(iter(kinds), "none")] += 1
     click.echo(f"{len(tasks)} runs; free sites: "
@@ -223,11 +288,14 @@ def stall_census(path: str, max_time: float, et_options: tuple[str, ...], jobs: 
               help="Re-run the unformed runs of a bench_regeneration.py --out file and "
                    "count their free sites by kind instead.")
 @click.option("--jobs", type=int, default=2, help="Processes for --from-runs.")
+@click.option("--probe", is_flag=True,
+              help="With --from-runs: also put a searcher on each takeable site's best "
+                   "point and report whether it takes the site within 120 s.")
 def main(shape: str | None, seed: int, damage: tuple[str, ...], max_time: float,
-         et_options: tuple[str, ...], runs_file: str | None, jobs: int) -> None:
+         et_options: tuple[str, ...], runs_file: str | None, jobs: int, probe: bool) -> None:
     """Run SHAPE and describe the free sites of every remnant that did not form."""
     if runs_file:
-        stall_census(runs_file, max_time, et_options, jobs)
+        stall_census(runs_file, max_time, et_options, jobs, probe)
         return
     if shape is None:
         raise click.UsageError("give a SHAPE, or --from-runs FILE")
