@@ -21,8 +21,7 @@ from etswarm.algorithm.offsets import FINE_PER_MM
 from etswarm.algorithm.run import ETRun, RunConfig
 from etswarm.algorithm.states import State
 from etswarm.errors import EtswarmError
-from etswarm.measures.formation import apply_fit, rigid_fit
-from etswarm.shapes.lattice import tags_to_xy
+from etswarm.measures.formation import fit_residuals_mm
 
 #: Readings older than this (s) are left out of a line.
 FRESH_S = 3.0
@@ -48,14 +47,14 @@ def heard_placed(run: ETRun, robot: int) -> list[tuple[int, int, int, float, flo
 
 
 def off_fit_mm(run: ETRun, robot: int) -> float:
-    """Distance (mm) of ``robot`` from its site's centre on the rigid fit of every placed
-    robot's tag to where it stands."""
+    """Distance (mm) of placed ``robot`` from its site's centre on the rigid fit of every
+    placed robot's tag to where it stands (``measures.formation.fit_residuals_mm``)."""
     ctl = run.controller
-    placed = np.flatnonzero((ctl.states >= State.INACTIVE) & (ctl.states <= State.STABLE))
-    spacing = run.config.et.spacing_mm
-    fit = rigid_fit(tags_to_xy(ctl.tags[placed], spacing), run.world.pos[placed])
-    centre = apply_fit(fit, tags_to_xy(ctl.tags[robot : robot + 1], spacing))[0]
-    return float(np.hypot(*(run.world.pos[robot] - centre)))
+    placed = (ctl.states >= State.INACTIVE) & (ctl.states <= State.STABLE)
+    resid = fit_residuals_mm(run.world.pos, ctl.tags, placed, run.config.et.spacing_mm)
+    if resid is None:
+        return float("nan")
+    return float(np.hypot(*resid[np.count_nonzero(placed[:robot])]))
 
 
 @click.command()

@@ -19,8 +19,7 @@ import numpy as np
 from etswarm.algorithm.memory import R_OFF_X, R_OFF_Y
 from etswarm.algorithm.offsets import FINE_PER_MM
 from etswarm.algorithm.run import ETRun, RunConfig
-from etswarm.measures.formation import apply_fit, rigid_fit
-from etswarm.shapes.lattice import tags_to_xy
+from etswarm.measures.formation import fit_residuals_mm
 
 #: Simulated s between the checks for formation.
 CHECK_S = 30.0
@@ -36,9 +35,9 @@ def far_off(shape: str, seed: int, max_time_s: float, over_mm: float) -> dict:
     ctl = run.controller
     rows = []
     if run.formed():  # (every robot holds a site: robots = cells)
-        ideal = tags_to_xy(ctl.tags, run.config.et.spacing_mm)
-        fit = rigid_fit(ideal, run.world.pos)
-        off_fit = np.linalg.norm(run.world.pos - apply_fit(fit, ideal), axis=1)
+        every = np.ones(run.world.n, dtype=bool)
+        resid = fit_residuals_mm(run.world.pos, ctl.tags, every, run.config.et.spacing_mm)
+        off_fit = np.linalg.norm(resid, axis=1)
         estimate = np.hypot(ctl.ri[:, R_OFF_X], ctl.ri[:, R_OFF_Y]) / FINE_PER_MM
         rows = [(int(r), round(float(off_fit[r]), 1), round(float(estimate[r]), 1))
                 for r in np.flatnonzero(off_fit > over_mm)]

@@ -52,20 +52,29 @@ def free_sites(tags: np.ndarray, holds: np.ndarray, target: np.ndarray) -> list[
     return sorted(_tag_set(target) - held)
 
 
-def placement_error_mm(
+def fit_residuals_mm(
     pos: np.ndarray, tags: np.ndarray, holds: np.ndarray, spacing_mm: float
-) -> float | None:
-    """RMS distance (mm) of placed robots from their ideal sites after the best rigid fit.
-
-    The fit (rotation + translation, Kabsch) maps ideal site positions onto the robots'
-    positions. None when fewer than two robots hold tags.
-    """
+) -> np.ndarray | None:
+    """Where each robot that holds a tag stands off its ideal site after the best rigid
+    fit of all of them: (K, 2) mm, fitted site minus position, in the order of the
+    ``holds`` mask (N,) bool. The fit (rotation + translation, Kabsch) maps ideal site
+    positions onto the robots' positions. None when fewer than two robots hold tags."""
     mask = np.asarray(holds, dtype=bool)
     if mask.sum() < 2:
         return None
     p = np.asarray(pos, dtype=np.float64)[mask]
     q = tags_to_xy(np.asarray(tags)[mask], spacing_mm)
-    resid = apply_fit(rigid_fit(q, p), q) - p
+    return apply_fit(rigid_fit(q, p), q) - p
+
+
+def placement_error_mm(
+    pos: np.ndarray, tags: np.ndarray, holds: np.ndarray, spacing_mm: float
+) -> float | None:
+    """RMS distance (mm) of placed robots from their ideal sites after the best rigid fit
+    (``fit_residuals_mm``). None when fewer than two robots hold tags."""
+    resid = fit_residuals_mm(pos, tags, holds, spacing_mm)
+    if resid is None:
+        return None
     return float(np.sqrt(np.mean(np.sum(resid**2, axis=1))))
 
 
