@@ -64,8 +64,10 @@ def off_fit_mm(run: ETRun, robot: int) -> float:
 @click.option("--from", "from_s", default=0.0, show_default=True,
               help="Simulated s to run before watching.")
 @click.option("--max-time", default=14400.0, show_default=True, help="Simulated s in all.")
-@click.option("--ticks", default=60, show_default=True, help="Ticks of searching shown.")
-@click.option("--every", default=6, show_default=True, help="A line every this many ticks.")
+@click.option("--ticks", default=60, show_default=True, type=click.IntRange(min=1),
+              help="Ticks of searching shown.")
+@click.option("--every", default=6, show_default=True, type=click.IntRange(min=1),
+              help="A line every this many ticks.")
 def main(shape: str, robot: int, seed: int, from_s: float, max_time: float, ticks: int,
          every: int) -> None:
     """Watch ROBOT of a SHAPE run take its site."""

@@ -19,7 +19,9 @@ import numpy as np
 from etswarm.algorithm.memory import R_OFF_X, R_OFF_Y
 from etswarm.algorithm.offsets import FINE_PER_MM
 from etswarm.algorithm.run import ETRun, RunConfig
+from etswarm.errors import EtswarmError
 from etswarm.measures.formation import fit_residuals_mm
+from etswarm.shapes import load_shape
 
 #: Simulated s between the checks for formation.
 CHECK_S = 30.0
@@ -46,15 +48,20 @@ def far_off(shape: str, seed: int, max_time_s: float, over_mm: float) -> dict:
 
 @click.command()
 @click.argument("shape")
-@click.option("--seeds", default=20, show_default=True)
+@click.option("--seeds", default=20, show_default=True, type=click.IntRange(min=1))
 @click.option("--first-seed", default=0, show_default=True)
 @click.option("--max-time", default=14400.0, show_default=True, help="Simulated s per run.")
 @click.option("--over", "over_mm", default=20.0, show_default=True,
               help="List robots farther than this (mm) off the fit.")
-@click.option("--jobs", default=1, show_default=True, help="Worker processes.")
+@click.option("--jobs", default=1, show_default=True, type=click.IntRange(min=1),
+              help="Worker processes.")
 def main(shape: str, seeds: int, first_seed: int, max_time: float, over_mm: float,
          jobs: int) -> None:
     """Robots far off their sites when SHAPE forms, seed by seed."""
+    try:
+        load_shape(shape)
+    except EtswarmError as err:
+        raise click.ClickException(str(err)) from None
     seed_list = list(range(first_seed, first_seed + seeds))
     with ProcessPoolExecutor(max_workers=jobs) as pool:
         results = pool.map(far_off, [shape] * seeds, seed_list, [max_time] * seeds,

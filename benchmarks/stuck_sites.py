@@ -294,6 +294,8 @@ def stall_census(path: str, max_time: float, et_options: tuple[str, ...], jobs: 
 def main(shape: str | None, seed: int, damage: tuple[str, ...], max_time: float,
          et_options: tuple[str, ...], runs_file: str | None, jobs: int, probe: bool) -> None:
     """Run SHAPE and describe the free sites of every remnant that did not form."""
+    if probe and not runs_file:
+        raise click.UsageError("--probe works with --from-runs FILE")
     if runs_file:
         stall_census(runs_file, max_time, et_options, jobs, probe)
         return

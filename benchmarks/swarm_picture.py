@@ -58,7 +58,8 @@ def robot_kinds(run: ETRun) -> dict[str, np.ndarray]:
 @click.command()
 @click.argument("shape")
 @click.option("--seed", default=0, show_default=True)
-@click.option("--at", "at_s", default=5400.0, show_default=True, help="Simulated s.")
+@click.option("--at", "at_s", default=5400.0, show_default=True,
+              type=click.FloatRange(min=0.0), help="Simulated s.")
 @click.option("--layout", type=click.Choice(["queue", "cluster"]), default="cluster",
               show_default=True)
 @click.option("--et", "et", multiple=True, metavar="NAME=VALUE", callback=et_params,
