@@ -29,14 +29,14 @@ The default loop is generated and compiled exactly as before.
 With ``SimParams.control_threads > 1`` (and threads = 1) the simulator asks for the split
 loop (``load_kernel(step, split=True, ...)``, file ``..._split_<hash>.py``): the serial
 loop's phases and random draws, but the controller's ``part_step`` runs on every thread,
-each taking pieces of ``CHUNK`` robots from a shared counter until none is left. The last
-thread to finish its pieces runs ``rest_step``, motion, collisions and the next tick's
-radio while the others wait at the barrier. Parts touch only their own robots' rows, so
-the results are the serial loop's, byte for byte, on any number of threads. With
-``SimParams.message_delay_ticks`` = 1 the radio fills the inbox of the next tick (both
-loops alternate two inboxes): in the split loop it is then job 0 of the tick's parallel
-phase, run by the first thread there from a copy of the senders' messages, beside the
-controller's pieces.
+each on its own range of robots; the ranges follow the work each thread measured
+(:mod:`etswarm.sim.balance`). The last thread to finish its range runs ``rest_step``,
+motion, collisions and the next tick's radio while the others wait at the barrier. Parts
+touch only their own robots' rows, so the results are the serial loop's, byte for byte,
+on any number of threads. With ``SimParams.message_delay_ticks`` = 1 the radio fills the
+inbox of the next tick (both loops alternate two inboxes): in the split loop thread 0
+then runs it from a copy of the senders' messages before its range, beside the other
+threads' ranges (and gets fewer robots for it).
 
 The directory is ``$ETSWARM_KERNEL_DIR`` if set, else ``~/.cache/etswarm/kernels``
 (or a temporary directory when that is not writable).
@@ -225,7 +225,8 @@ from etswarm.sim.collide import collide_phase
 from etswarm.sim.motion import move_phase
 from etswarm.sim.neighbours import grid_sync
 from etswarm.sim.radio import radio_phase, senders_by_phase, snapshot_senders
-from etswarm.sim.sync import arrive, atomic_add, atomic_load, release
+from etswarm.sim.balance import BAL_BOUNDS, cost_index, cycle_count, ready_bounds, rebalance
+from etswarm.sim.sync import arrive, atomic_load, release
 
 # controller_part and controller_rest are bound by etswarm.sim.kernel before this body
 # runs (the controller's part_step and rest_step).
@@ -234,25 +235,16 @@ from etswarm.sim.sync import arrive, atomic_add, atomic_load, release
 ST_DIRTY = 0
 ST_DONE = 1
 ST_STOP = 2
-ST_NEXT = 3
-# robots per piece of the controller's work that a thread takes at a time
-CHUNK = 128
 
 
 @njit(cache={cache})
 def thread_ticks(p, parts, n, tick0, cfg, grid, pos, heading, motor, led, alive, present,
                  speed, turn_rate, tx_phase, out_on, out_type, out_data, in_count, in_type,
                  in_data, in_dist, counters, dirty, dirty_flag, spare, trig, rng_motion,
-                 rng_radio, rng_ctl, mem, sync, state, order, first, nxt, snap):
+                 rng_radio, rng_ctl, mem, sync, state, order, first, nxt, snap, bal):
 {borrow}
-    sync, state, order, first, snap = borrowed((sync, state, order, first, snap))
-    n_robots = pos.shape[0]
-    size = CHUNK if parts > 1 else n_robots  # one thread: one part, as the serial loop
-    n_chunks = (n_robots + size - 1) // size
+    sync, state, order, first, snap, bal = borrowed((sync, state, order, first, snap, bal))
     delay = cfg.msg_delay
-    # with a delay, job 0 of a tick is its radio (into the other inbox, from the copy of
-    # the senders' messages): it runs while the other threads take the controller's pieces
-    n_jobs = n_chunks + delay
     stop = mem[0]
     for k in range(n):
         tick = tick0 + k
@@ -262,23 +254,21 @@ def thread_ticks(p, parts, n, tick0, cfg, grid, pos, heading, motor, led, alive,
                 rx = nxt
             else:
                 cx = nxt
-        while True:
-            job = atomic_add(state, ST_NEXT, 1) - delay
-            if job >= n_chunks:
-                break
-            if job < 0:
-                radio_phase(tick, cfg, grid, pos, alive, present, tx_phase, snap[0], snap[1],
-                            snap[2], rx[0], rx[1], rx[2], rx[3], counters, rng_radio, order,
-                            first)
-                continue
-            lo = job * size
-            hi = min(n_robots, lo + size)
-            controller_part(lo, hi, tick, alive, cx[0], cx[1], cx[2], cx[3], motor, led,
-                            out_on, out_type, out_data, mem)
+        # this thread's robots (etswarm.sim.balance), timed; with a delay, thread 0 also
+        # runs the tick's radio (into the other inbox, from the copy of the senders'
+        # messages) beside the others' parts, and its time counts as its part's
+        started = cycle_count()
+        if delay != 0 and p == 0:
+            radio_phase(tick, cfg, grid, pos, alive, present, tx_phase, snap[0], snap[1],
+                        snap[2], rx[0], rx[1], rx[2], rx[3], counters, rng_radio, order,
+                        first)
+        controller_part(bal[BAL_BOUNDS + p], bal[BAL_BOUNDS + p + 1], tick, alive, cx[0],
+                        cx[1], cx[2], cx[3], motor, led, out_on, out_type, out_data, mem)
+        bal[cost_index(parts, p)] = cycle_count() - started
         if arrive(sync, parts):
             # the last thread here runs the rest of the tick and readies the next one's
             # radio (runs it, or with a delay copies its senders' messages)
-            state[ST_NEXT] = 0
+            rebalance(bal, parts)
             controller_rest(tick, alive, cx[0], cx[1], cx[2], cx[3], motor, led,
                             out_on, out_type, out_data, mem, rng_ctl)
             n_dirty = move_phase(cfg, grid, pos, heading, motor, alive, present, speed,
@@ -305,14 +295,14 @@ def thread_ticks(p, parts, n, tick0, cfg, grid, pos, heading, motor, led, alive,
 def run_ticks(n, tick0, cfg, grid, pos, heading, motor, led, alive, present, speed,
               turn_rate, tx_phase, out_on, out_type, out_data, in_count, in_type, in_data,
               in_dist, counters, dirty, dirty_flag, spare, trig, rng_motion, rng_radio, rng_ctl,
-              mem, sync, state, parts, nxt, snap):
+              mem, sync, state, parts, nxt, snap, bal):
     if n <= 0:
         return 0
     order, first = senders_by_phase(tx_phase, cfg.tx_period)
     state[ST_DIRTY] = grid_sync(grid, pos, present, dirty, dirty_flag, grid.state[2])
     state[ST_DONE] = 0
     state[ST_STOP] = 0
-    state[ST_NEXT] = 0
+    ready_bounds(bal, parts, pos.shape[0])
     if cfg.msg_delay != 0:
         snapshot_senders(tick0, cfg, out_on, out_type, out_data, snap[0], snap[1], snap[2],
                          order, first)
@@ -325,7 +315,7 @@ def run_ticks(n, tick0, cfg, grid, pos, heading, motor, led, alive, present, spe
                      speed, turn_rate, tx_phase, out_on, out_type, out_data, in_count,
                      in_type, in_data, in_dist, counters, dirty, dirty_flag, spare, trig,
                      rng_motion, rng_radio, rng_ctl, mem, sync, state, order, first, nxt,
-                     snap)
+                     snap, bal)
     return state[ST_DONE]
 '''
 

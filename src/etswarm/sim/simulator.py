@@ -38,6 +38,7 @@ import numpy as np
 
 from etswarm.errors import EtswarmError
 from etswarm.seeding import stream
+from etswarm.sim.balance import balance_size
 from etswarm.sim.collide import collide_phase
 from etswarm.sim.kernel import load_kernel
 from etswarm.sim.motion import move_phase
@@ -144,11 +145,12 @@ class Simulator:
         rest_step = getattr(controller, "rest_step", None)
         # control_threads > 1: the controller's per-robot work on threads, the rest as at
         # threads = 1 (same results); only for a controller that offers its step split
-        self._split: tuple[np.ndarray, np.ndarray] | None = None
+        self._split: tuple[np.ndarray, np.ndarray, np.ndarray] | None = None
         if (self.fast and self.threads == 1 and self.params.control_threads > 1
                 and part_step is not None and rest_step is not None):
-            self._split = (np.zeros(2, dtype=np.int64), np.zeros(4, dtype=np.int64))
             most = max(1, min(self.params.control_threads, numba.config.NUMBA_NUM_THREADS))
+            self._split = (np.zeros(2, dtype=np.int64), np.zeros(3, dtype=np.int64),
+                           np.zeros(balance_size(most), dtype=np.int64))
             self._chooser = ThreadChooser(most)
         if self.fast:
             mem = controller.mem
@@ -257,7 +259,7 @@ class Simulator:
         not depend on the thread count."""
         w = self.world
         assert self._split is not None
-        sync, state = self._split
+        sync, state, bal = self._split
 
         def call(threads: int, ticks: int, done: int) -> int:
             return self._after_ticks(int(self._kernel(
@@ -267,7 +269,7 @@ class Simulator:
                 w.in_dist, w.counters, self._dirty, self._dirty_flag, self._spare,
                 self._trig, self.rng_motion, self.rng_radio, self.rng_controller,
                 self.controller.mem, sync, state, threads, tuple(self._next_inbox),
-                self._sent_copy,
+                self._sent_copy, bal,
             )))
 
         return self._run_chosen(n, call)
