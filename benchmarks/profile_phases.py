@@ -29,12 +29,11 @@ import time
 
 import click
 import numpy as np
-from llvmlite import ir
-from numba import njit, prange, types
-from numba.extending import intrinsic
+from numba import njit, prange
 
 from etswarm.algorithm.controller import et_step
 from etswarm.sim import RandomWalk, SimParams, Simulator, arena_side_for, random_world
+from etswarm.sim.balance import cycle_count
 from etswarm.sim.collide import collide_phase
 from etswarm.sim.controllers.randomwalk import (
     randomwalk_part,
@@ -73,43 +72,31 @@ PHASES = ("radio", "control", "move", "collide")
 MT_PHASES = ("radio", "control", "move", "collide", "upkeep", "wait")
 
 
-@intrinsic
-def _cycles(typingctx):
-    """The CPU cycle counter (``llvm.readcyclecounter``) as uint64."""
-
-    def codegen(context, builder, signature, args):
-        fnty = ir.FunctionType(ir.IntType(64), [])
-        fn = builder.module.declare_intrinsic("llvm.readcyclecounter", fnty=fnty)
-        return builder.call(fn, [])
-
-    return types.uint64(), codegen
-
-
 @njit
 def _timed_ticks(n, tick0, cfg, grid, pos, heading, motor, led, alive, present, speed,
                  turn_rate, tx_phase, out_on, out_type, out_data, in_count, in_type, in_data,
                  in_dist, counters, dirty, dirty_flag, spare, trig, rng_motion, rng_radio,
                  rng_ctl, mem, cycles):
-    """The simulator's tick loop (see etswarm.sim.kernel) with ``cycles`` (4,) uint64
+    """The simulator's tick loop (see etswarm.sim.kernel) with ``cycles`` (4,) int64
     accumulating the cycles of radio, control, move and collide."""
     order, first = senders_by_phase(tx_phase, cfg.tx_period)
     n_dirty = grid_sync(grid, pos, present, dirty, dirty_flag, grid.state[2])
     for k in range(n):
         tick = tick0 + k
-        t0 = _cycles()
+        t0 = cycle_count()
         radio_phase(tick, cfg, grid, pos, alive, present, tx_phase, out_on, out_type,
                     out_data, in_count, in_type, in_data, in_dist, counters, rng_radio,
                     order, first)
-        t1 = _cycles()
+        t1 = cycle_count()
         randomwalk_step(tick, alive, in_count, in_type, in_data, in_dist, motor, led,
                         out_on, out_type, out_data, mem, rng_ctl)
-        t2 = _cycles()
+        t2 = cycle_count()
         n_dirty = move_phase(cfg, grid, pos, heading, motor, alive, present, speed,
                              turn_rate, dirty, dirty_flag, n_dirty, trig, rng_motion)
-        t3 = _cycles()
+        t3 = cycle_count()
         n_dirty = collide_phase(cfg, grid, pos, present, motor, dirty, dirty_flag, n_dirty, spare,
                                 counters)
-        t4 = _cycles()
+        t4 = cycle_count()
         cycles[0] += t1 - t0
         cycles[1] += t2 - t1
         cycles[2] += t3 - t2
@@ -133,27 +120,27 @@ def _timed_thread(p, n, tick0, cfg, grid, pos, heading, motor, led, alive, prese
     lo, hi = part_bounds(p, pos.shape[0], scr)
     for k in range(n):
         tick = tick0 + k
-        t0 = _cycles()
+        t0 = cycle_count()
         radio_list_part(p, tick, cfg, grid, pos, alive, present, tx_phase, out_on, out_type,
                         out_data, scr, order, first)
-        t1 = _cycles()
+        t1 = cycle_count()
         if arrive(sync, parts):
             release(sync)
-        t2 = _cycles()
+        t2 = cycle_count()
         radio_file_part(p, tick, cfg, grid, pos, alive, present, tx_phase, out_on, out_type,
                         out_data, in_count, in_type, in_data, in_dist, counters, scr, order,
                         first)
-        t3 = _cycles()
+        t3 = cycle_count()
         bad = radio_bad(scr)
         if not bad:
             randomwalk_part(lo, hi, tick, alive, in_count, in_type, in_data, in_dist, motor,
                             led, out_on, out_type, out_data, mem)
-        t4 = _cycles()
+        t4 = cycle_count()
         c[0] += (t1 - t0) + (t3 - t2)
         c[1] += t4 - t3
         c[5] += t2 - t1
         if arrive(sync, parts):
-            t45 = _cycles()
+            t45 = cycle_count()
             radio_count(counters, scr)
             control_begin(scr)
             release(sync)
@@ -163,51 +150,51 @@ def _timed_thread(p, n, tick0, cfg, grid, pos, heading, motor, led, alive, prese
             randomwalk_rest(tick, alive, in_count, in_type, in_data, in_dist, motor, led,
                             out_on, out_type, out_data, mem, rng_ctl)
             control_done(scr)
-            t5 = _cycles()
+            t5 = cycle_count()
             c[5] += t45 - t4
             c[1] += t5 - t45
         else:
-            t45 = _cycles()
+            t45 = cycle_count()
             prebuild_lists(p, cfg, grid, scr)
-            t5 = _cycles()
+            t5 = cycle_count()
             c[5] += t45 - t4
             c[3] += t5 - t45
         if arrive(sync, parts):
             release(sync)
-        t6 = _cycles()
+        t6 = cycle_count()
         move_part(p, tick, cfg, grid, pos, heading, motor, alive, present, speed, turn_rate,
                   flags, trig, scr)
-        t7 = _cycles()
+        t7 = cycle_count()
         c[5] += t6 - t5
         c[2] += t7 - t6
         if arrive(sync, parts):
-            t8 = _cycles()
+            t8 = cycle_count()
             move_finish(grid, pos, present, flags, scr)
             collide_begin(grid, scr)
             release(sync)
-            t9 = _cycles()
+            t9 = cycle_count()
             c[5] += t8 - t7
             c[4] += t9 - t8
         else:
-            c[5] += _cycles() - t7
+            c[5] += cycle_count() - t7
         while atomic_load(cs, CS_CONT) != 0:
-            t = _cycles()
+            t = cycle_count()
             collide_pass_grab(p, cfg, grid, pos, motor, flags, scr)
-            t3 = _cycles()
+            t3 = cycle_count()
             c[3] += t3 - t
             if arrive(sync, parts):
-                t4 = _cycles()
+                t4 = cycle_count()
                 collide_after_pass(cfg, grid, pos, present, flags, scr)
                 if cs[CS_CONT] == 0:
                     collide_end(grid, pos, present, flags, counters, scr)
                     cs[CS_STOP] = 1 if mem[0][0] != 0 else 0
                     cs[CS_DONE] = k + 1
                 release(sync)
-                t5 = _cycles()
+                t5 = cycle_count()
                 c[5] += t4 - t3
                 c[4] += t5 - t4
             else:
-                c[5] += _cycles() - t3
+                c[5] += cycle_count() - t3
 
 
 @njit(parallel=True)
@@ -239,7 +226,7 @@ def profile_threaded(n: int, warmup: int, ticks: int, seed: int, threads: int,
     scr = sim._scratch
     assert scr is not None
     scr.parts[0] = parts = sim._threads_used() if one_thread is False else 1
-    cycles = np.zeros((parts, len(MT_PHASES)), dtype=np.uint64)
+    cycles = np.zeros((parts, len(MT_PHASES)), dtype=np.int64)
 
     def call(k: int) -> tuple[float, float]:
         w = world
@@ -279,7 +266,7 @@ def profile(n: int, warmup: int, ticks: int, seed: int) -> dict[str, float]:
     ctl = RandomWalk(n)
     sim = Simulator(world, ctl, params, seed)
     sim.run_ticks(warmup)
-    cycles = np.zeros(len(PHASES), dtype=np.uint64)
+    cycles = np.zeros(len(PHASES), dtype=np.int64)
 
     def call(k: int) -> float:
         w = world
@@ -319,20 +306,20 @@ def _timed_et_ticks(n, tick0, cfg, grid, pos, heading, motor, led, alive, presen
     n_dirty = grid_sync(grid, pos, present, dirty, dirty_flag, grid.state[2])
     for k in range(n):
         tick = tick0 + k
-        t0 = _cycles()
+        t0 = cycle_count()
         radio_phase(tick, cfg, grid, pos, alive, present, tx_phase, out_on, out_type,
                     out_data, in_count, in_type, in_data, in_dist, counters, rng_radio,
                     order, first)
-        t1 = _cycles()
+        t1 = cycle_count()
         et_step(tick, alive, in_count, in_type, in_data, in_dist, motor, led,
                 out_on, out_type, out_data, mem, rng_ctl)
-        t2 = _cycles()
+        t2 = cycle_count()
         n_dirty = move_phase(cfg, grid, pos, heading, motor, alive, present, speed,
                              turn_rate, dirty, dirty_flag, n_dirty, trig, rng_motion)
-        t3 = _cycles()
+        t3 = cycle_count()
         n_dirty = collide_phase(cfg, grid, pos, present, motor, dirty, dirty_flag, n_dirty, spare,
                                 counters)
-        t4 = _cycles()
+        t4 = cycle_count()
         cycles[0] += t1 - t0
         cycles[1] += t2 - t1
         cycles[2] += t3 - t2
@@ -358,7 +345,7 @@ def profile_et(shape: str, start_s: float, seconds: float) -> dict[str, float]:
                           max_time_s=1e9, layout="cluster"))
     run.advance(round(start_s * run.ticks_per_s))
     sim, w, ctl = run.sim, run.world, run.controller
-    cycles = np.zeros(len(PHASES), dtype=np.uint64)
+    cycles = np.zeros(len(PHASES), dtype=np.int64)
 
     def call(k: int) -> int:
         return int(_timed_et_ticks(
