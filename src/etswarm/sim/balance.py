@@ -14,12 +14,12 @@ Which thread does which robots never changes the results (parts touch only their
 robots' rows), so the boundaries need no care for determinism.
 
 ``bal`` is an int64 array of :func:`balance_size` entries: ``[parts, bounds (parts + 1),
-cycles (parts)]``; part ``p`` holds robots ``bounds[p] .. bounds[p + 1] - 1``.
+cycles (parts), room for the next bounds (parts + 1)]``; part ``p`` holds robots
+``bounds[p] .. bounds[p + 1] - 1``.
 """
 
 from __future__ import annotations
 
-import numpy as np
 from llvmlite import ir
 from numba import njit, types
 from numba.extending import intrinsic
@@ -35,7 +35,7 @@ BAL_STEP = 0.125
 
 def balance_size(most: int) -> int:
     """Entries of the ``bal`` array for up to ``most`` parts."""
-    return 2 * most + 2
+    return 3 * most + 3
 
 
 @intrinsic
@@ -54,6 +54,12 @@ def cycle_count(typingctx):
 def cost_index(parts, p):  # type: ignore[no-untyped-def]
     """Index in ``bal`` of part ``p``'s cycles of the last tick."""
     return BAL_BOUNDS + parts + 1 + p
+
+
+@njit(cache=True)
+def target_index(parts, k):  # type: ignore[no-untyped-def]
+    """Index in ``bal`` where :func:`rebalance` keeps boundary ``k``'s even-cost point."""
+    return BAL_BOUNDS + 2 * parts + 1 + k
 
 
 @njit(cache=True)
@@ -78,7 +84,6 @@ def rebalance(bal, parts):  # type: ignore[no-untyped-def]
         total += max(bal[cost_index(parts, p)], 0)
     if total <= 0.0:
         return
-    targets = np.empty(parts + 1, dtype=np.float64)
     q = 0
     done = 0.0  # cycles of the parts before part q
     for k in range(1, parts):
@@ -90,12 +95,12 @@ def rebalance(bal, parts):  # type: ignore[no-untyped-def]
         hi = bal[BAL_BOUNDS + q + 1]
         cost = max(bal[cost_index(parts, q)], 0)
         share = (want - done) / cost if cost > 0 else 0.5
-        targets[k] = lo + min(max(share, 0.0), 1.0) * (hi - lo)
+        bal[target_index(parts, k)] = round(lo + min(max(share, 0.0), 1.0) * (hi - lo))
     for k in range(1, parts):
         old = bal[BAL_BOUNDS + k]
-        gap = targets[k] - old
+        gap = bal[target_index(parts, k)] - old
         step = int(BAL_STEP * gap)
-        if step == 0 and abs(gap) >= 1.0:
+        if step == 0 and gap != 0:
             step = 1 if gap > 0 else -1  # the last few robots one at a time
         new = old + step
         # boundaries stay in order
