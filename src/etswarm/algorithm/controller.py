@@ -19,6 +19,7 @@ from numba import njit
 
 from etswarm.algorithm.census_walk import sends_tag, walk_rule, walking
 from etswarm.algorithm.extent import encode_extent, ingest_extent, sends_extent
+from etswarm.algorithm.hole_watch import encode_watch, file_watch, sends_watch, watch_edge
 from etswarm.algorithm.kernel_util import (
     INACTIVE,
     LEADER,
@@ -99,6 +100,7 @@ from etswarm.algorithm.messages import (
     MSG_SILENT,
     MSG_STATUS,
     MSG_TARGET,
+    MSG_WATCH,
     YIELDING_BIT,
     get_i8,
     get_u16,
@@ -109,6 +111,7 @@ from etswarm.algorithm.offsets import sent_offset
 from etswarm.algorithm.params import (
     C_EVAL_EVERY,
     C_GOSSIP_EVERY,
+    C_HOLE_WATCH,
     C_STILL_READINGS,
     C_TICKS_NB_FRESH,
 )
@@ -272,7 +275,7 @@ def ingest(i, k, tick, ri, in_type, in_data, in_dist, nb, nb_dist, ci):  # type:
     when it is newer than the one kept.
     """
     kind = np.int64(in_type[i, k]) & KIND_MASK
-    if kind == MSG_HELD:
+    if kind in (MSG_HELD, MSG_WATCH):
         return kind  # no status, no row of its own (``note_reading``, ``merge_held``)
     sender = np.int64(in_data[i, k, 0]) | (np.int64(in_data[i, k, 1]) << 8)
     slot = table_slot(i, sender, nb)
@@ -569,6 +572,11 @@ def et_part(  # type: ignore[no-untyped-def]
                 new_msgs = file_held(
                     i, k, tick, ri, in_type, in_data, in_dist, nb, nb_dist, held, slot_info
                 ) or new_msgs
+            elif kind == MSG_WATCH:
+                # searchers seen in a hole (``hole_watch``): kept, and a reading of a robot
+                # in the table; nothing that wakes a sleeping robot
+                file_watch(i, k, tick, ri, in_type, in_data, ci)
+                new_msgs = note_reading(i, k, tick, in_data, in_dist, nb, nb_dist) or new_msgs
             else:
                 wake = 0
                 if kind == MSG_ELECT:
@@ -631,6 +639,8 @@ def et_part(  # type: ignore[no-untyped-def]
             )
             # (a no-op once placed_rule has started an election: it acts in the normal phase)
             contact_rule(i, tick, ri, nb, nb_dist, gene_flag[slot], ci)
+            if ci[C_HOLE_WATCH] > 0 and ri[i, R_PHASE] == PHASE_NORMAL:
+                watch_edge(i, tick, ri, nb, nb_dist, gene_flag[slot], ci, cf)
             if (
                 ri[i, R_PHASE] == PHASE_NORMAL
                 and INACTIVE <= ri[i, R_STATE] <= STABLE
@@ -649,6 +659,13 @@ def et_part(  # type: ignore[no-untyped-def]
             encode_placed(i, tick, ri, nb, ci, held, slot_info, out_on, out_type, out_data)
         else:
             encode(i, tick, ri, out_on, out_type, out_data)
+        if (
+            ci[C_HOLE_WATCH] > 0
+            and INACTIVE <= ri[i, R_STATE] <= STABLE
+            and out_type[i] & KIND_MASK == MSG_STATUS
+            and sends_watch(i, tick, ri, gene_flag[slot], ci)
+        ):
+            encode_watch(i, tick, ri, ci, out_type, out_data)
 
 
 @njit

@@ -218,7 +218,13 @@ R_CUT_OFF_SINCE = R_REMEMBERED_SINCE + 1
 R_LEFT = R_CUT_OFF_SINCE + 1
 R_LEFT_X = R_LEFT + 1
 R_LEFT_Y = R_LEFT_X + 1
-R_FIELDS = R_LEFT_Y + 1
+#: Two sightings of searchers inside a hole (``hole_watch``): the searcher's ID (-1:
+#: none) and the tick, on this robot's clock, it was heard there.
+R_WATCH_ID0 = R_LEFT_Y + 1
+R_WATCH_T0 = R_WATCH_ID0 + 1
+R_WATCH_ID1 = R_WATCH_T0 + 1
+R_WATCH_T1 = R_WATCH_ID1 + 1
+R_FIELDS = R_WATCH_T1 + 1
 
 PHASE_NORMAL = 0
 PHASE_ELECTING = 1
@@ -287,6 +293,10 @@ def allocate(n_robots: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     ri[:, R_PEND_EPOCH] = -1
     ri[:, R_CANDIDATE] = 1
     ri[:, R_WALK_SEEN] = -(1 << 40)
+    ri[:, R_WATCH_ID0] = -1
+    ri[:, R_WATCH_ID1] = -1
+    ri[:, R_WATCH_T0] = -(1 << 40)
+    ri[:, R_WATCH_T1] = -(1 << 40)
     nb = np.zeros((n_robots, NB_FIELDS, NB_SLOTS), dtype=np.int64).transpose(0, 2, 1)
     nb[:, :, NB_ID] = -1
     nb[:, :, NB_PREV] = -1

@@ -52,6 +52,11 @@ Extent message (kind 6; electing robots, every third period instead of their ele
 message for a while after their extent last grew, see ``extent``): 0-1 robot ID, 2-7 the
 least and greatest tag X, Y and X - Y of the remnant heard of so far (int8 each), 8 unused;
 the epoch elected for is in the type byte.
+Watch message (kind 7; placed robots on a hole's edge that know a searcher was seen in the
+hole lately, every third period instead of their status, see ``hole_watch``): 0-1 robot
+ID, 2-3 a searcher's ID (0xFFFF: none), 4 how long ago it was seen in the hole (whole
+seconds, 255 at most), 5-7 a second searcher the same way, 8 unused; the epoch is in the
+type byte as for a status.
 
 The target epoch a status belongs to is in its type byte (mod 32). TS is the paper's
 gradient, a few tens at most on the library's shapes (39 on bigdisc), so one byte holds it.
@@ -73,6 +78,7 @@ MSG_TARGET = 3
 MSG_SILENT = 4
 MSG_HELD = 5
 MSG_EXTENT = 6
+MSG_WATCH = 7
 KIND_MASK = 0x07
 EPOCH_SHIFT = 3
 

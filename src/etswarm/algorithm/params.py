@@ -63,7 +63,9 @@ C_REGROW_UNPINCH = 46  # a kept robot this many mm into a free site of the new t
 C_RIGHT_OF_WAY = 47  # a searcher keeps clear of lower-ID searchers only: RIGHT_OF_WAY_*
 C_TICKS_CLEAR_FIRST = 48  # C_TICKS_CLEAR in the first formation (a thin shape's own)
 C_TICKS_REJOIN = 49  # a Stable robot cut off this long, Stable only by excused sites, searches
-N_CI = 50
+C_HOLE_WATCH = 50  # ticks a searcher seen in a hole keeps others from walling it off (0: off)
+C_TICKS_PER_S = 51  # control ticks per simulated second
+N_CI = 52
 
 #: Values of ``ci[C_RIGHT_OF_WAY]``: never, always, or in the first formation alone (a
 #: thin shape's, ``thin_right_of_way``).
@@ -164,7 +166,7 @@ NON_NEGATIVE: frozenset[str] = frozenset(
         "capture_pinch_refusals", "regrowth_pinch_refusals", "two_neighbour_widen_s",
         "regrowth_two_neighbour_widen_s", "capture_mouth_mm", "capture_offset_mm",
         "regrowth_capture_offset_mm", "remembered_neighbours_s", "regrowth_unpinch_mm",
-        "isolated_rejoin_s",
+        "isolated_rejoin_s", "hole_watch_s",
     }
 )
 #: Parameters that may take any sign.
@@ -536,6 +538,11 @@ class ETParams:
     #: (``rejoin``). 0: it stays, cut off (H ``split x`` seeds 0 and 6: all robots Stable,
     #: one of them 80 mm from the rest).
     isolated_rejoin_s: float = 120.0
+    #: With the hole flag and memory: placed robots on a hole's edge note searchers they
+    #: hear inside the hole and pass it on round the edge, and a searcher does not wall a
+    #: hole off while it knows another searcher was seen inside within this many seconds
+    #: (``hole_watch``). 0: no watch (a ring may close with searchers shut in).
+    hole_watch_s: float = 60.0
 
     def __post_init__(self) -> None:
         for f in fields(self):
@@ -658,6 +665,10 @@ class ETParams:
         ci[C_TICKS_HOLD] = round(self.release_hold_s * ticks_per_s)
         ci[C_STILL_READINGS] = self.still_readings
         ci[C_TICKS_CROWDED] = round(self.regrowth_crowded_s * ticks_per_s)
+        holes_known = self.hole_flag == "on" and self.hole_memory == "on"
+        watching = self.hole_watch_s > 0 and holes_known
+        ci[C_HOLE_WATCH] = ticks(self.hole_watch_s) if watching else 0
+        ci[C_TICKS_PER_S] = ticks_per_s
         cf = np.zeros(N_CF, dtype=np.float64)
         cf[F_SPACING] = self.spacing_mm
         cf[F_PAIR_TOL] = self.pair_tol_mm

@@ -6,6 +6,7 @@ import numpy as np
 from numba import njit
 
 from etswarm.algorithm.fill_order import strands_a_site
+from etswarm.algorithm.hole_watch import watch_blocks
 from etswarm.algorithm.homing import (
     homing_motion,
     integrate,
@@ -850,6 +851,8 @@ def search_rule(  # type: ignore[no-untyped-def]
         ):
             same = False  # from here it would narrow a free site, or stands far off: it moves on
             ri[i, R_PINCH_REFUSED] += 1
+        if same and watch_blocks(i, tick, cx, cy, ri, held_i, ox, oy, gene_flag, ci):
+            same = False  # a searcher is in the hole this capture walls off
         if same:
             set_state(i, ri, INACTIVE, tick)
             ri[i, R_TAG_X] = cx
@@ -909,6 +912,8 @@ def search_rule(  # type: ignore[no-untyped-def]
             found, cx, cy, min_ts = pocket_site(
                 i, tick, tick - steer_fresh, nb, nb_dist, gene_flag, ci, cf, held_i, ox, oy
             )
+        if found and watch_blocks(i, tick, cx, cy, ri, held_i, ox, oy, gene_flag, ci):
+            found = False  # it moves on: a searcher is in the hole this capture walls off
         if found:
             motor[i] = STOP
             ri[i, R_SUB] = SUB_SETTLE

@@ -338,3 +338,26 @@ def shuts_in(cx, cy, held_i, ox, oy, gene_flag, ci):  # type: ignore[no-untyped-
     if shut and not reaches_outside(cx, cy, held_i, ox, oy, gene_flag, ci):
         return False  # already in a closed hole: fill it
     return shut
+
+
+@njit
+def walls_a_hole(cx, cy, held_i, ox, oy, gene_flag, ci):  # type: ignore[no-untyped-def]
+    """Taking site (cx, cy) would cut a hole site next to it off from the outside of the
+    shape, as far as the memory ``held_i`` tells (a searcher still in the hole would be
+    shut in). ``held_i`` is restored on return."""
+    if not (0 <= cx - ox < held_i.shape[0] and 0 <= cy - oy < held_i.shape[1]):
+        return False
+    if is_held(held_i, cx, cy, ox, oy):
+        return False
+    held_i[cx - ox, cy - oy] = 1
+    walled = False
+    for k in range(6):
+        sx = cx + DIR_X[k]
+        sy = cy + DIR_Y[k]
+        if gene_at(gene_flag, ci, sx, sy) != HOLE_FLAG or is_held(held_i, sx, sy, ox, oy):
+            continue
+        if not flood_from(sx, sy, held_i, ox, oy, gene_flag, ci)[0]:
+            walled = True
+            break
+    held_i[cx - ox, cy - oy] = 0
+    return walled
