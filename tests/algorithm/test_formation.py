@@ -8,8 +8,7 @@ import pytest
 from etswarm.algorithm.params import ETParams
 from etswarm.algorithm.run import ETRun, RunConfig
 from etswarm.algorithm.states import State
-from etswarm.measures.formation import duplicate_tags, min_pair_distance, rigid_fit
-from etswarm.shapes.lattice import enclosed_cells, tags_to_xy, xy_to_nearest_tag
+from etswarm.measures.formation import duplicate_tags, in_holes, min_pair_distance
 
 
 def run_formation(shape: str, seed: int, max_time_s: float = 3600.0) -> ETRun:
@@ -126,18 +125,6 @@ def test_the_ring_of_o_closes_only_once_the_edge_of_its_hole_is_held() -> None:
     assert min_pair_distance(run.world.pos, run.world.present) > 2 * 16.5 - 1.0
 
 
-def in_a_hole(run: ETRun, members: np.ndarray) -> np.ndarray:
-    """Which of the robots ``members`` (N,) bool stand in a hole of the target: (M,) bool,
-    by the nearest site of the lattice fitted to the Stable robots."""
-    stable = run.controller.states == State.STABLE
-    spacing = run.config.et.spacing_mm
-    fit = rigid_fit(tags_to_xy(run.controller.tags[stable], spacing), run.world.pos[stable])
-    rot, ideal_centre, actual_centre = fit
-    ideal = (run.world.pos[members] - actual_centre) @ rot.T + ideal_centre
-    holes = {tuple(t) for t in enclosed_cells(run.target).tolist()}
-    return np.array([tuple(t) in holes for t in xy_to_nearest_tag(ideal, spacing).tolist()])
-
-
 def test_the_ring_of_o_stays_open_while_its_edge_sees_a_searcher_in_the_hole() -> None:
     # Seed 0 without the hole watch: the ring closes with every searcher shut in the hole,
     # and the sites they would take stay free outside. With the watch (the default) the
@@ -145,9 +132,18 @@ def test_the_ring_of_o_stays_open_while_its_edge_sees_a_searcher_in_the_hole() -
     plain = ETRun(RunConfig(shape="O", seed=0, max_time_s=10800, et=ETParams(hole_watch_s=0)))
     summary = plain.run()
     assert not summary["formed"]
-    searching = plain.controller.states == State.SEARCH
+    states = plain.controller.states
+    searching = states == State.SEARCH
     assert searching.sum() == len(summary["components"][0]["free_tags"])
-    assert in_a_hole(plain, searching).all()
+    stable = states == State.STABLE
+    assert in_holes(
+        plain.world.pos[searching], plain.world.pos, plain.controller.tags, stable,
+        plain.target, plain.config.et.spacing_mm,
+    ).all()
+    assert not in_holes(
+        plain.world.pos[stable], plain.world.pos, plain.controller.tags, stable,
+        plain.target, plain.config.et.spacing_mm,
+    ).any()
     run = run_formation("O", 0, max_time_s=10800)
     summary = run.summary()
     assert summary["formed"], summary["components"]

@@ -12,7 +12,7 @@ from scipy.sparse import coo_matrix
 from scipy.sparse.csgraph import connected_components
 from scipy.spatial import cKDTree
 
-from etswarm.shapes.lattice import tags_to_xy
+from etswarm.shapes.lattice import enclosed_cells, tags_to_xy, xy_to_nearest_tag
 
 
 def _tag_set(tags: np.ndarray) -> set[tuple[int, int]]:
@@ -94,6 +94,24 @@ def apply_fit(fit: tuple[np.ndarray, np.ndarray, np.ndarray], points: np.ndarray
     """Map ideal positions ``points`` (M, 2) mm through a :func:`rigid_fit` result."""
     rot, qc0, pc0 = fit
     return (np.asarray(points, dtype=np.float64) - qc0) @ rot + pc0
+
+
+def in_holes(
+    points: np.ndarray, pos: np.ndarray, tags: np.ndarray, holds: np.ndarray,
+    target: np.ndarray, spacing_mm: float,
+) -> np.ndarray:
+    """Which ``points`` (M, 2) mm stand in a hole of the ``target`` cells (P, 2), such as
+    the middle of an ``O``: (M,) bool, by the nearest site of the lattice that the robots
+    holding tags (``pos`` (N, 2) mm, ``tags`` (N, 2), ``holds`` (N,) bool, two at least)
+    fit best (``rigid_fit``). Used to tell searchers shut in a hole from those outside."""
+    mask = np.asarray(holds, dtype=bool)
+    rot, ideal_centre, actual_centre = rigid_fit(
+        tags_to_xy(np.asarray(tags)[mask], spacing_mm), np.asarray(pos, dtype=np.float64)[mask]
+    )
+    ideal = (np.asarray(points, dtype=np.float64).reshape(-1, 2) - actual_centre) @ rot.T
+    sites = xy_to_nearest_tag(ideal + ideal_centre, spacing_mm)
+    holes = {tuple(t) for t in enclosed_cells(target).tolist()}
+    return np.array([tuple(t) in holes for t in sites.tolist()], dtype=bool)
 
 
 def components(pos: np.ndarray, members: np.ndarray, radius_mm: float) -> list[np.ndarray]:
