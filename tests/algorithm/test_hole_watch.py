@@ -26,6 +26,7 @@ from etswarm.algorithm.memory import (
 )
 from etswarm.algorithm.messages import EPOCH_SHIFT, KIND_MASK, MSG_WATCH, get_u16
 from etswarm.algorithm.params import C_HOLE_WATCH, ETParams
+from etswarm.algorithm.run import ETRun, RunConfig
 from etswarm.algorithm.site_memory import walls_a_hole
 
 from .test_site_memory import ORIGIN, memory_of, ring, ring_gene
@@ -173,3 +174,12 @@ def test_only_an_edge_robot_with_fresh_news_sends_a_watch() -> None:
     assert not any(sends_watch(1, t, ri, gene, ci) for t in periods)
     assert not sends_watch(0, 61 * TPS + 30, ri, gene, ci)  # the news is stale
     assert ri[0, R_WATCH_ID1] == -1 and ri[0, R_WATCH_T1] < 0
+
+
+def test_the_watch_runs_only_for_targets_with_a_hole() -> None:
+    plain = ETRun(RunConfig(shape="T", seed=0, max_time_s=1.0)).controller
+    assert plain.ci[C_HOLE_WATCH] == 0 and plain.hole_watch_ticks == 60 * plain.ticks_per_s
+    ring_shape = ETRun(RunConfig(shape="O", seed=0, max_time_s=1.0)).controller
+    assert ring_shape.ci[C_HOLE_WATCH] == 60 * ring_shape.ticks_per_s
+    off = ETRun(RunConfig(shape="O", seed=0, max_time_s=1.0, et=ETParams(hole_watch_s=0)))
+    assert off.controller.ci[C_HOLE_WATCH] == 0

@@ -41,7 +41,7 @@ from etswarm.algorithm.memory import (
     SLOT_WY,
     allocate,
 )
-from etswarm.algorithm.params import NOMINAL_MOTION, ETParams
+from etswarm.algorithm.params import C_HOLE_WATCH, NOMINAL_MOTION, ETParams
 from etswarm.algorithm.states import State
 from etswarm.shapes.lattice import depths, enclosed_cells, neighbour_counts, sort_cells
 
@@ -99,6 +99,10 @@ class ETController:
             nominal_motion=nominal_motion, shape_depth=int(depths(target).max(initial=0)),
             shape_cells=len(target),
         )
+        # The hole watch costs every placed robot a look round each evaluation: it runs
+        # only once a target with a hole has been stored (``add_target``).
+        self.hole_watch_ticks = int(self.ci[C_HOLE_WATCH])
+        self.ci[C_HOLE_WATCH] = 0
         # Each robot's bitmap of the tags it collected on a census walk (only Leaders use
         # it; a placeholder when the census is by spanning tree).
         walk_grid = self.grid_shape if et.census == "walk" else (1, 1)
@@ -142,6 +146,8 @@ class ETController:
             if self.et.hole_flag == "on":
                 holes = enclosed_cells(cells)
                 self.gene_flag[slot, holes[:, 0] - self.x0, holes[:, 1] - self.y0] = HOLE_FLAG
+                if len(holes):
+                    self.ci[C_HOLE_WATCH] = self.hole_watch_ticks
             self.gene_nn[slot, gx, gy] = neighbour_counts(cells)
         self.slot_info[slot] = (len(cells), release_limit, tx, ty, 1, *window, slot, turn)
         key = sort_cells(cells)
