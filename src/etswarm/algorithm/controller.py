@@ -275,7 +275,7 @@ def ingest(i, k, tick, ri, in_type, in_data, in_dist, nb, nb_dist, ci):  # type:
     when it is newer than the one kept.
     """
     kind = np.int64(in_type[i, k]) & KIND_MASK
-    if kind == MSG_HELD or kind == MSG_WATCH:
+    if kind in (MSG_HELD, MSG_WATCH):
         return kind  # no status, no row of its own (``note_reading``, ``merge_held``)
     sender = np.int64(in_data[i, k, 0]) | (np.int64(in_data[i, k, 1]) << 8)
     slot = table_slot(i, sender, nb)
