@@ -65,7 +65,8 @@ C_TICKS_CLEAR_FIRST = 48  # C_TICKS_CLEAR in the first formation (a thin shape's
 C_TICKS_REJOIN = 49  # a Stable robot cut off this long, Stable only by excused sites, searches
 C_HOLE_WATCH = 50  # ticks a searcher seen in a hole keeps others from walling it off (0: off)
 C_TICKS_PER_S = 51  # control ticks per simulated second
-N_CI = 52
+C_WAVE = 52  # ticks at the shape a searcher keeps to the wave from the seeds (0: off)
+N_CI = 53
 
 #: Values of ``ci[C_RIGHT_OF_WAY]``: never, always, or in the first formation alone (a
 #: thin shape's, ``thin_right_of_way``).
@@ -166,7 +167,7 @@ NON_NEGATIVE: frozenset[str] = frozenset(
         "capture_pinch_refusals", "regrowth_pinch_refusals", "two_neighbour_widen_s",
         "regrowth_two_neighbour_widen_s", "capture_mouth_mm", "capture_offset_mm",
         "regrowth_capture_offset_mm", "remembered_neighbours_s", "regrowth_unpinch_mm",
-        "isolated_rejoin_s", "hole_watch_s",
+        "isolated_rejoin_s", "hole_watch_s", "wave_s",
     }
 )
 #: Parameters that may take any sign.
@@ -543,6 +544,13 @@ class ETParams:
     #: hole off while it knows another searcher was seen inside within this many seconds
     #: (``hole_watch``). 0: no watch (a ring may close with searchers shut in).
     hole_watch_s: float = 60.0
+    #: In the first formation a searcher does not take a site while a neighbour site of
+    #: the target nearer the seed triangle (in steps within the shape) is not known held,
+    #: for its first this many seconds at the shape (``wave``): a compact shape then
+    #: grows outwards from the seeds instead of along its rim round free middles. Off
+    #: for targets with holes. 0 (the default for now): off, the paper's first site found.
+    #: 1200 formed disc 119 of 120 runs against 113 (``docs/algorithm.md``, session 44).
+    wave_s: float = 0.0
 
     def __post_init__(self) -> None:
         for f in fields(self):
@@ -669,6 +677,7 @@ class ETParams:
         watching = self.hole_watch_s > 0 and holes_known
         ci[C_HOLE_WATCH] = ticks(self.hole_watch_s) if watching else 0
         ci[C_TICKS_PER_S] = ticks_per_s
+        ci[C_WAVE] = ticks(self.wave_s) if self.wave_s > 0 else 0
         cf = np.zeros(N_CF, dtype=np.float64)
         cf[F_SPACING] = self.spacing_mm
         cf[F_PAIR_TOL] = self.pair_tol_mm

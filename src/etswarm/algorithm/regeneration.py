@@ -129,6 +129,7 @@ from etswarm.algorithm.params import (
 )
 from etswarm.algorithm.pinch import pinches_new_target
 from etswarm.algorithm.release import HOPS_NONE
+from etswarm.algorithm.wave import nn_of
 
 #: A robot catching up with a missed election keeps its site only when a placed robot of
 #: the new target on a neighbour site reads nearer than this (mm): d plus the slack of a
@@ -381,7 +382,7 @@ def adopt_target(i, tick, ri, nb, slot, epoch, leader, gene_flag, gene_nn, slot_
     ri[i, R_REMEMBERED_SINCE] = 0
     ri[i, R_RESUMED_AT] = 0
     if keeps:
-        ri[i, R_NN] = gene_at(gene_nn[slot], ci, x, y)
+        ri[i, R_NN] = nn_of(gene_at(gene_nn[slot], ci, x, y))
         restart_offset(i, tick, i == leader, ri, ci)
         if i == leader:
             set_state(i, ri, ACTIVE, tick)
