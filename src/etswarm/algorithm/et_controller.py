@@ -43,7 +43,7 @@ from etswarm.algorithm.memory import (
 )
 from etswarm.algorithm.params import C_HOLE_WATCH, C_WAVE, NOMINAL_MOTION, ETParams
 from etswarm.algorithm.states import State
-from etswarm.algorithm.wave import HOPS_SHIFT, NN_MASK, seed_hops
+from etswarm.algorithm.wave import HOPS_SHIFT, nn_of, seed_hops
 from etswarm.shapes.lattice import depths, enclosed_cells, neighbour_counts, sort_cells
 
 #: Target slots allocated at first (more are added when regenerations need them).
@@ -191,7 +191,7 @@ class ETController:
             ri[rid, R_TS] = 1 if k == 0 else 2
             ri[rid, R_TAG_X] = x
             ri[rid, R_TAG_Y] = y
-            ri[rid, R_NN] = self.gene_nn[0, x - self.x0, y - self.y0] & NN_MASK
+            ri[rid, R_NN] = nn_of(self.gene_nn[0, x - self.x0, y - self.y0])
             ri[rid, R_HAS_TAG] = 1
             ri[rid, R_SINCE] = 0
         self.idle[:] = 0

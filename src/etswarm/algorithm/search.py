@@ -110,7 +110,6 @@ from etswarm.algorithm.params import (
     C_TICKS_NB_FRESH,
     C_TICKS_SETTLE,
     C_TICKS_YIELD_MAX,
-    C_WAVE,
     F_AIM_RELAX,
     F_BALANCE_TOL,
     F_CAPTURE_OFFSET,
@@ -149,7 +148,7 @@ from etswarm.algorithm.site_memory import (
     shuts_in,
     site_taken,
 )
-from etswarm.algorithm.wave import behind_wave, nn_of
+from etswarm.algorithm.wave import nn_of, wave_blocks
 
 #: A widened candidate's heard lattice neighbours must stand within d + this (mm): a
 #: neighbour much farther is heard only now and then, and a placed robot that stops
@@ -855,9 +854,7 @@ def search_rule(  # type: ignore[no-untyped-def]
             ri[i, R_PINCH_REFUSED] += 1
         if same and watch_blocks(i, tick, cx, cy, ri, held_i, ox, oy, gene_flag, ci):
             same = False  # a searcher is in the hole this capture walls off
-        if same and keeps_to_wave(i, ri, at_shape, ci) and behind_wave(
-            cx, cy, gene_flag, gene_nn, ci, held_i, ox, oy
-        ):
+        if same and wave_blocks(i, ri, at_shape, cx, cy, gene_flag, gene_nn, ci, held_i, ox, oy):
             same = False  # a site nearer the seeds is still free
         if same:
             set_state(i, ri, INACTIVE, tick)
@@ -920,9 +917,7 @@ def search_rule(  # type: ignore[no-untyped-def]
             )
         if found and watch_blocks(i, tick, cx, cy, ri, held_i, ox, oy, gene_flag, ci):
             found = False  # it moves on: a searcher is in the hole this capture walls off
-        if found and keeps_to_wave(i, ri, at_shape, ci) and behind_wave(
-            cx, cy, gene_flag, gene_nn, ci, held_i, ox, oy
-        ):
+        if found and wave_blocks(i, ri, at_shape, cx, cy, gene_flag, gene_nn, ci, held_i, ox, oy):
             found = False  # a site nearer the seeds is still free
         if found:
             motor[i] = STOP
@@ -1000,13 +995,6 @@ def search_rule(  # type: ignore[no-untyped-def]
         motor[i] = FORWARD
     else:
         motor[i] = toward
-
-
-@njit(inline="always")
-def keeps_to_wave(i, ri, at_shape, ci):  # type: ignore[no-untyped-def]
-    """Searcher i keeps to the wave from the seeds (``wave``): first formation, under
-    ``C_WAVE`` ticks at the shape."""
-    return ci[C_WAVE] > 0 and first_growth(i, ri) and at_shape < ci[C_WAVE]
 
 
 @njit

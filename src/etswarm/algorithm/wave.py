@@ -15,9 +15,10 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
-from etswarm.algorithm.kernel_util import DIR_X, DIR_Y, gene_at
+from etswarm.algorithm.kernel_util import DIR_X, DIR_Y, first_growth, gene_at
+from etswarm.algorithm.params import C_WAVE
 from etswarm.algorithm.site_memory import is_held
-from etswarm.shapes.lattice import NEIGHBOUR_OFFSETS
+from etswarm.shapes.lattice import steps_from
 
 #: ``gene_nn`` holds NN in its low bits and the hop count from the seeds above them.
 HOPS_SHIFT = 3
@@ -28,6 +29,15 @@ NN_MASK = (1 << HOPS_SHIFT) - 1
 def nn_of(value):  # type: ignore[no-untyped-def]
     """NN of a ``gene_nn`` value."""
     return value & NN_MASK
+
+
+@njit
+def wave_blocks(i, ri, at_shape, cx, cy, gene_flag, gene_nn, ci, held_i, ox, oy):  # type: ignore[no-untyped-def]
+    """Searcher i must not take site (cx, cy) yet: it keeps to the wave (first formation,
+    under ``C_WAVE`` ticks ``at_shape``) and the site is ``behind_wave``."""
+    if ci[C_WAVE] == 0 or not first_growth(i, ri) or at_shape >= ci[C_WAVE]:
+        return False
+    return behind_wave(cx, cy, gene_flag, gene_nn, ci, held_i, ox, oy)
 
 
 @njit
@@ -49,23 +59,9 @@ def behind_wave(cx, cy, gene_flag, gene_nn, ci, held_i, ox, oy):  # type: ignore
 
 def seed_hops(cells: np.ndarray, seed_tags: np.ndarray) -> np.ndarray:
     """Hops (P,) int64 of each of ``cells`` ((P, 2) tags) from the nearest of
-    ``seed_tags`` ((3, 2)), stepping between neighbouring cells of the shape only
-    (breadth-first); cells the seeds do not reach get the largest count plus one."""
-    index = {(int(x), int(y)): k for k, (x, y) in enumerate(np.asarray(cells).tolist())}
-    hops = np.full(len(index), -1, dtype=np.int64)
-    frontier = [index[(int(x), int(y))] for x, y in seed_tags.tolist() if (x, y) in index]
-    for k in frontier:
-        hops[k] = 0
-    cells_list = np.asarray(cells).tolist()
-    while frontier:
-        nxt = []
-        for k in frontier:
-            x, y = cells_list[k]
-            for dx, dy in NEIGHBOUR_OFFSETS:
-                j = index.get((x + int(dx), y + int(dy)))
-                if j is not None and hops[j] < 0:
-                    hops[j] = hops[k] + 1
-                    nxt.append(j)
-        frontier = nxt
-    hops[hops < 0] = hops.max() + 1
-    return hops
+    ``seed_tags`` ((3, 2)), stepping between neighbouring cells of the shape only;
+    cells the seeds do not reach get the largest count plus one."""
+    steps = steps_from(cells, seed_tags)
+    reached = np.isfinite(steps)
+    top = int(steps[reached].max()) + 1 if reached.any() else 0
+    return np.where(reached, steps, top).astype(np.int64)

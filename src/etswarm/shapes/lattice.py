@@ -128,24 +128,42 @@ def neighbour_counts(cells: np.ndarray) -> np.ndarray:
     return (neighbour_index(cells) >= 0).sum(axis=1).astype(np.int64)
 
 
+def _steps_from_extra_node(nbr: np.ndarray, joined: np.ndarray) -> np.ndarray:
+    """(P,) float steps from one extra node, joined to cells ``joined`` (indices), to every
+    cell of the lattice graph ``nbr`` ((P, 6) neighbour indices, -1 none); inf where it
+    cannot be reached."""
+    p = len(nbr)
+    inner = nbr >= 0
+    rows = np.concatenate([np.repeat(np.arange(p), 6)[inner.ravel()], joined,
+                           np.full(len(joined), p)])
+    cols = np.concatenate([nbr[inner], np.full(len(joined), p), joined])
+    graph = coo_matrix((np.ones(len(rows)), (rows, cols)), shape=(p + 1, p + 1)).tocsr()
+    return shortest_path(graph, unweighted=True, indices=p)[:p]
+
+
 def depths(cells: np.ndarray) -> np.ndarray:
     """(P,) int64: each cell's depth, the fewest lattice steps from it to a site outside
     ``cells`` (1 for a cell on the rim, one with a neighbour outside). A shape whose
     depths are all at most 2 is drawn in strokes at most three cells wide."""
     nbr = neighbour_index(cells)
-    p = len(nbr)
-    if p == 0:
+    if len(nbr) == 0:
         return np.zeros(0, dtype=np.int64)
-    # Node p stands for the outside, joined to every rim cell.
-    inner = nbr >= 0
-    rows = np.repeat(np.arange(p), 6)[inner.ravel()]
-    cols = nbr[inner]
-    rim = np.flatnonzero(~inner.all(axis=1))
-    rows = np.concatenate([rows, rim, np.full(len(rim), p)])
-    cols = np.concatenate([cols, np.full(len(rim), p), rim])
-    graph = coo_matrix((np.ones(len(rows)), (rows, cols)), shape=(p + 1, p + 1)).tocsr()
-    steps = shortest_path(graph, unweighted=True, indices=p)
-    return steps[:p].astype(np.int64)
+    # The extra node stands for the outside, joined to every rim cell.
+    rim = np.flatnonzero(~(nbr >= 0).all(axis=1))
+    return _steps_from_extra_node(nbr, rim).astype(np.int64)
+
+
+def steps_from(cells: np.ndarray, sources: np.ndarray) -> np.ndarray:
+    """(P,) float: the fewest lattice steps within ``cells`` from any of ``sources``
+    ((S, 2) tags; those not in ``cells`` are ignored) to each cell; 0 on a source, inf
+    where no source is reached."""
+    nbr = neighbour_index(cells)
+    if len(nbr) == 0:
+        return np.zeros(0)
+    index = {tuple(c): k for k, c in enumerate(np.asarray(cells).tolist())}
+    joined = np.array([index[t] for t in map(tuple, np.asarray(sources).tolist()) if t in index],
+                      dtype=np.int64)
+    return _steps_from_extra_node(nbr, joined) - 1.0
 
 
 def edge_count(cells: np.ndarray) -> int:
