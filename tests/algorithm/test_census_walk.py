@@ -114,7 +114,7 @@ class WatchedRun(ETRun):
         tags = ctl.ri[:, [R_TAG_X, R_TAG_Y]]
         for leader in ctl.pending_requests():
             home = tags[leader]
-            group = self._group_of(int(leader))
+            group = self._radio_group_of(int(leader))
             errors = []
             for j in group:
                 if j != leader and tuple((tags[j] - home).tolist()) in {

@@ -1,10 +1,15 @@
 """Settings that traced scenario tests pin, so that a later change of a default does not
 move their seeds off the situation they were written for."""
 
+#: Until session 45 a searcher took the first free site it could locate, the waves from
+#: the seeds were an option; first formations traced before then form as described with
+#: this (and so do the shapes their damage then cuts).
+SESSION_44_FORMATION = {"wave_s": 0.0}
+
 #: Until session 35 a thin shape (cells at most two steps from its outside) formed with
 #: the compact shapes' settle retries and release clear time; first formations of `T`,
 #: triangle, `L`, `E`, `H` and arrow traced before then form as described with this.
-SESSION_34_FORMATION = {"thin_depth": 0}
+SESSION_34_FORMATION = {"thin_depth": 0, **SESSION_44_FORMATION}
 
 #: Until session 27 a searcher got the wide window only at sites of three or more placed
 #: neighbours, in the first formation too; shapes traced before then are formed as
@@ -18,7 +23,7 @@ SESSION_19_WIDENING = {"widen_s": 1200.0, "capture_pinch_refusals": 2, **SESSION
 
 #: Until session 34 a Leader kept the scaled shape in the original's orientation;
 #: regrowths traced before then place and branch as described with this.
-SESSION_33_PLACEMENT = {"placement_turns": "off"}
+SESSION_33_PLACEMENT = {"placement_turns": "off", **SESSION_44_FORMATION}
 
 #: Until session 32 a Leader's placement counted cells off the old shape like any other;
 #: regrowths traced before then place and branch as described with this.

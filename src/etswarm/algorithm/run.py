@@ -159,7 +159,11 @@ class ETRun:
         self.settled_at_s: float | None = None
         self.last_damage_s: float | None = None
         self.reformed_at: dict[int, float] = {}
-        self.census: dict[int, dict[str, Any]] = {}
+        #: Every census so far, in the order the Leaders asked for their targets.
+        self.censuses: list[dict[str, Any]] = []
+        #: (N,) index into ``censuses`` of the last census that counted each robot (the
+        #: robot was in its Leader's radio group then); -1: none yet.
+        self.counted_in = np.full(self.world.n, -1, dtype=np.int64)
         self._detected_for: float | None = -1.0
         self._target_sizes: dict[int, int] = {}  # distinct tags per target slot (_check)
         self.wall_s = 0.0
@@ -237,7 +241,7 @@ class ETRun:
             old_slot = int(row[R_TSLOT])
             slot = ctl.answer(int(leader), cells, n, tx, ty, turn)
             kept = ctl.slot_info[slot, SLOT_SHAPE] == ctl.slot_info[old_slot, SLOT_SHAPE]
-            group = self._group_of(int(leader))
+            group = self._radio_group_of(int(leader))
             # The robot's clock: election began, Leader declared, census concluded.
             elected_s = int(row[R_SINCE]) / tps
             done_s = int(row[R_WALK_END]) / tps
@@ -253,7 +257,8 @@ class ETRun:
             }
             if self.config.census == "walk":
                 census["tags"] = int(row[R_WALK_TAGS])
-            self.census[slot] = census
+            self.counted_in[group] = len(self.censuses)
+            self.censuses.append(census)
             self._event("census", **census, slot=slot)
             if kept and self.config.et.false_alarm == "resume":
                 self._event("target_kept", leader=int(leader), slot=slot)
@@ -322,15 +327,29 @@ class ETRun:
         turn, tx, ty = chosen
         return turn_cells(cells, turn) + np.array([tx, ty]), tx, ty, turn
 
-    def _group_of(self, robot: int) -> np.ndarray:
-        for group in self._groups():
+    def _radio_group_of(self, robot: int) -> np.ndarray:
+        """IDs of the live robots radio-connected to ``robot`` now."""
+        live = self.world.present & self.world.alive
+        for group in components(self.world.pos, live, self.sim_params.comm_range_mm):
             if robot in group:
                 return group
         return np.array([robot])
 
     def _groups(self) -> list[np.ndarray]:
+        """The remnants, as arrays of robot IDs, largest first: radio-connected groups of
+        live robots that the same census counted (or no census yet). A remnant that
+        regrows to within radio range of another without merging with it (a robot the
+        cut left alone, too small to regrow, beside the regrown half: traced on the
+        demo's `T` seed 7, where counted into the half its census looked one short)
+        stays a remnant of its own; remnants that merge are counted again together."""
         live = self.world.present & self.world.alive
-        return components(self.world.pos, live, self.sim_params.comm_range_mm)
+        radius = self.sim_params.comm_range_mm
+        groups = [
+            group
+            for k in np.unique(self.counted_in[live])
+            for group in components(self.world.pos, live & (self.counted_in == k), radius)
+        ]
+        return sorted(groups, key=lambda g: (-len(g), int(g[0])))
 
     def _check(self) -> None:
         if self.recorder is not None:
@@ -462,7 +481,8 @@ class ETRun:
             member[group] = True
             slot = self._slot_of(group)
             target = self.controller.slot_cells[slot]
-            census = self.census.get(slot)
+            counted = np.unique(self.counted_in[group])
+            census = self.censuses[int(counted[-1])] if counted[-1] >= 0 else None
             too_small = slot != 0 and len(target) == 0
             g_holds = holds & member
             g_formed = len(target) > 0 and is_formed(tags, g_holds, stable & member, target)

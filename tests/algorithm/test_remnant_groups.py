@@ -1,0 +1,30 @@
+"""The summary's remnants are the groups each census counted, not whoever stands within
+radio range at the end."""
+
+from __future__ import annotations
+
+from etswarm.algorithm.params import ETParams
+from etswarm.algorithm.run import ETRun, RunConfig
+
+from .traced import SESSION_44_FORMATION
+
+
+def test_a_robot_the_cut_left_alone_stays_a_remnant_of_its_own() -> None:
+    # `T` seed 7 cut at x=0: robot 12 is left alone on the cut line, counts itself and
+    # stays put; the 11-robot half regrows to within radio range of it without merging.
+    run = ETRun(RunConfig(shape="T", seed=7, max_time_s=3 * 3600, damage=("split x=0",),
+                          et=ETParams(**SESSION_44_FORMATION)))
+    summary = run.run()
+    assert summary["settled"], summary["components"]
+    comps = summary["components"]
+    assert sum(c["robots"] for c in comps) == 45
+    alone = [c for c in comps if c["too_small"]]
+    assert [c["robots"] for c in alone] == [1]
+    for comp in comps:
+        assert comp["census_count"] == comp["robots"], comp
+        assert comp["formed"] == (not comp["too_small"]), comp
+    # It does stand within radio range of the regrown half.
+    (stray,) = [e["leader"] for e in summary["events"]
+                if e["kind"] == "census" and e["count"] == 1]
+    near = run._radio_group_of(stray)
+    assert len(near) > 1
