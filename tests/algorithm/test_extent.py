@@ -144,7 +144,7 @@ def test_the_scaled_shape_covers_the_remnant():
     ctl = run.controller
     alive = run.world.present & run.world.alive
     for leader in leaders:
-        group = run._group_of(leader)
+        group = run._radio_group_of(leader)
         tags = held[group]
         true = np.array([
             [tags[:, 0].min(), tags[:, 0].max()],

@@ -23,7 +23,7 @@ from etswarm.algorithm.pinch import (
 )
 from etswarm.shapes.lattice import tags_to_xy
 
-from .traced import SESSION_19_WIDENING, SESSION_33_PLACEMENT
+from .traced import SESSION_19_WIDENING, SESSION_33_PLACEMENT, SESSION_44_FORMATION
 
 D = 40.0
 HELD_DIRS = (1, 2, 3, 4, 5)
@@ -252,12 +252,14 @@ def test_refusing_narrow_mouths_lets_a_regrowth_fill_its_last_site() -> None:
     # for hours; with it every remnant re-forms.
     config = {"shape": "dumbbell", "seed": 5, "damage": ("split y=mid",),
               "max_time_s": 4 * 3600}
-    off = ETRun(RunConfig(**config, et=ETParams(capture_mouth_mm=0.0, **SESSION_33_PLACEMENT)))
+    off = ETRun(RunConfig(**config, et=ETParams(capture_mouth_mm=0.0, **SESSION_33_PLACEMENT,
+                                                 **SESSION_44_FORMATION)))
     summary = off.run()
     assert summary["formed"]  # the first formation
     assert not all(c["formed"] for c in summary["components"])
     assert narrowest_mouth_mm(off) < 68.0
-    on = ETRun(RunConfig(**config, et=ETParams(**SESSION_33_PLACEMENT))).run()
+    on = ETRun(RunConfig(**config, et=ETParams(**SESSION_33_PLACEMENT,
+                                                **SESSION_44_FORMATION))).run()
     assert len(on["components"]) >= 2
     assert all(c["formed"] and c["jaccard"] == 1.0 for c in on["components"])
     assert on["duplicate_tags"] == []

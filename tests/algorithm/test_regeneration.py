@@ -8,7 +8,7 @@ import pytest
 from etswarm.algorithm.params import ETParams
 from etswarm.algorithm.run import ETRun, RunConfig
 
-from .traced import SESSION_34_FORMATION
+from .traced import SESSION_34_FORMATION, SESSION_44_FORMATION
 
 
 def regenerate(damage: str, seed: int) -> dict:
@@ -87,7 +87,7 @@ def test_each_remnant_elects_once_and_regrows(shape: str, damage: str, seed: int
     # (first formations as traced: without diving and held-site gossip)
     config = RunConfig(
         shape=shape, seed=seed, max_time_s=4 * 3600, damage=(damage,),
-        et=ETParams(dive_mm=0.0, held_gossip_every=0),
+        et=ETParams(dive_mm=0.0, held_gossip_every=0, **SESSION_44_FORMATION),
     )
     run = ETRun(config)
     summary = run.run()

@@ -23,7 +23,7 @@ SESSION_19_WIDENING = {"widen_s": 1200.0, "capture_pinch_refusals": 2, **SESSION
 
 #: Until session 34 a Leader kept the scaled shape in the original's orientation;
 #: regrowths traced before then place and branch as described with this.
-SESSION_33_PLACEMENT = {"placement_turns": "off", **SESSION_44_FORMATION}
+SESSION_33_PLACEMENT = {"placement_turns": "off"}
 
 #: Until session 32 a Leader's placement counted cells off the old shape like any other;
 #: regrowths traced before then place and branch as described with this.

@@ -337,17 +337,23 @@ class ETRun:
 
     def _groups(self) -> list[np.ndarray]:
         """The remnants, as arrays of robot IDs, largest first: radio-connected groups of
-        live robots that the same census counted (or no census yet). A remnant that
-        regrows to within radio range of another without merging with it (a robot the
-        cut left alone, too small to regrow, beside the regrown half: traced on the
-        demo's `T` seed 7, where counted into the half its census looked one short)
-        stays a remnant of its own; remnants that merge are counted again together."""
+        live robots working for the same target slot, and those of a remnant too small
+        to regrow (one empty slot for all of them) apart by the census that counted them.
+        A remnant that regrows to within radio range of another without merging with it
+        stays a remnant of its own: counted into the half regrown beside it, a robot the
+        cut left alone made that half's census look one short (traced on the demo's `T`
+        seed 7), and a 3-robot remnant beside the other half (seed 15 of session 45)
+        looked formed while it was not."""
         live = self.world.present & self.world.alive
+        slots = self.controller.ri[:, R_TSLOT]
+        empty = np.array([s > 0 and len(c) == 0
+                          for s, c in enumerate(self.controller.slot_cells)])[slots]
+        keys = np.where(empty, len(self.controller.slot_cells) + 1 + self.counted_in, slots)
         radius = self.sim_params.comm_range_mm
         groups = [
             group
-            for k in np.unique(self.counted_in[live])
-            for group in components(self.world.pos, live & (self.counted_in == k), radius)
+            for k in np.unique(keys[live])
+            for group in components(self.world.pos, live & (keys == k), radius)
         ]
         return sorted(groups, key=lambda g: (-len(g), int(g[0])))
 
@@ -481,8 +487,8 @@ class ETRun:
             member[group] = True
             slot = self._slot_of(group)
             target = self.controller.slot_cells[slot]
-            counted = np.unique(self.counted_in[group])
-            census = self.censuses[int(counted[-1])] if counted[-1] >= 0 else None
+            counted = int(self.counted_in[group].max())
+            census = self.censuses[counted] if counted >= 0 else None
             too_small = slot != 0 and len(target) == 0
             g_holds = holds & member
             g_formed = len(target) > 0 and is_formed(tags, g_holds, stable & member, target)
