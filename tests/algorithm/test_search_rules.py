@@ -111,6 +111,7 @@ def test_the_papers_search_is_a_command_line_option() -> None:
     args = ["triangle", "--seed", "3", "--max-time", "3600", "--json"]
     papers = ["--no-creep", "--orbit", "bounce", "--no-second-ring", "--no-hole-memory"]
     papers.append("--no-pocket")  # the default; --pocket is tested in test_pocket
+    papers.append("--no-wave")
     paper = CliRunner().invoke(run_command, [*args, *papers])
     assert paper.exit_code == 0, paper.output
     ours = CliRunner().invoke(run_command, args)

@@ -57,6 +57,12 @@ from etswarm.algorithm.layout import LAYOUTS
               help="In the first formation, a searcher along the queue near its aim drives "
                    "straight on instead of pivoting (--no-queue-stride: the paper's "
                    "edge-following all the way).")
+@click.option("--wave/--no-wave", default=True, show_default=True,
+              help="In the first formation a searcher does not take a site while a site "
+                   "beside it nearer the seeds is not known held, for its first 20 minutes "
+                   "at the shape, so compact shapes grow outwards from the seeds; off for "
+                   "shapes with holes (--no-wave: the paper's first site found; --et "
+                   "wave_s=S sets the seconds).")
 @click.option("--et", "et_options", multiple=True, metavar="NAME=VALUE",
               help="Set any ETParams field, e.g. --et pair_aim_mm=-1 (repeatable; see "
                    "docs/algorithm.md). Applied after the options above.")
@@ -88,7 +94,7 @@ from etswarm.algorithm.layout import LAYOUTS
 def run(shape: str, robots: int | None, seed: int, loss: float, noise: float, max_time: float,
         layout: str, release_interval: float | None, census: str, orbit: str, creep: bool,
         second_ring: bool, hole_memory: bool, pocket: bool, release_order: str,
-        silent_sites: bool, queue_stride: bool, et_options: tuple[str, ...], fit: bool,
+        silent_sites: bool, queue_stride: bool, wave: bool, et_options: tuple[str, ...], fit: bool,
         damage: tuple[str, ...],
         out: Path | None, video: Path | None, fps: float, speedup: float, snapshots: bool,
         as_json: bool, threads: int, control_threads: int | None, message_delay: int) -> None:
@@ -123,6 +129,8 @@ def run(shape: str, robots: int | None, seed: int, loss: float, noise: float, ma
                   release_order=release_order,
                   silent_sites="on" if silent_sites else "off",
                   queue_stride="on" if queue_stride else "off")
+    if not wave:
+        et = replace(et, wave_s=0.0)
     if release_interval is not None:
         et = replace(et, release_interval_s=release_interval)
     et = replace(et, **dict(parse_et_option(text) for text in et_options))
