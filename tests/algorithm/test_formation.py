@@ -95,11 +95,10 @@ def test_an_unfinished_run_says_which_sites_are_free_and_who_searches() -> None:
 @pytest.mark.slow
 def test_a_shape_of_300_cells_forms_from_the_cluster() -> None:
     """bigplus (300 cells, 300 robots) from a packed repository: every site held by one
-    Stable robot, no bodies overlapping (seed 16 formed in 4.9 simulated hours in session
-    31, and in 7.3 h with session 35's numpy 2.4 and numba 0.68, where it had not formed by
-    6 h; 17 of seeds 0-19 form within 12 h, see docs/algorithm.md, "Thin shapes of 300+
-    cells")."""
-    run = ETRun(RunConfig(shape="bigplus", seed=16, max_time_s=8 * 3600.0, layout="cluster"))
+    Stable robot, no bodies overlapping (seed 0 formed in 5.5 simulated hours with the
+    defaults of session 45; 19 of seeds 0-19 form within 12 h, see docs/algorithm.md,
+    "Thin shapes of 300+ cells" and "Session 45")."""
+    run = ETRun(RunConfig(shape="bigplus", seed=0, max_time_s=8 * 3600.0, layout="cluster"))
     summary = run.run()
     assert summary["formed"], summary["states"]
     assert summary["robots"] == 300 and summary["jaccard"] == 1.0

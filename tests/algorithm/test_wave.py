@@ -8,7 +8,7 @@ import numpy as np
 from etswarm.algorithm.et_controller import ETController
 from etswarm.algorithm.layout import plan_layout
 from etswarm.algorithm.memory import R_NN
-from etswarm.algorithm.params import ETParams
+from etswarm.algorithm.params import C_WAVE, ETParams
 from etswarm.algorithm.run import ETRun, RunConfig
 from etswarm.algorithm.search import hex_distance
 from etswarm.algorithm.states import State
@@ -104,3 +104,12 @@ def test_a_disc_whose_rim_closed_round_free_sites_forms_with_the_wave() -> None:
     placed = with_wave.controller.states >= State.INACTIVE
     assert duplicate_tags(with_wave.controller.tags, placed) == []
     assert min_pair_distance(with_wave.world.pos, with_wave.world.present) > 2 * 16.5 - 1.0
+
+
+def test_the_wave_is_on_by_default_but_not_for_thin_or_holed_shapes() -> None:
+    on = {shape: ETRun(RunConfig(shape=shape)).controller.ci[C_WAVE] > 0
+          for shape in ("disc", "starfish", "dumbbell", "plus", "T", "H", "triangle", "O")}
+    assert on == {"disc": True, "starfish": True, "dumbbell": True, "plus": True,
+                  "T": False, "H": False, "triangle": False, "O": False}
+    no_wave = ETRun(RunConfig(shape="disc", et=ETParams(wave_s=0.0)))
+    assert no_wave.controller.ci[C_WAVE] == 0

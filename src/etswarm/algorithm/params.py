@@ -548,9 +548,10 @@ class ETParams:
     #: the target nearer the seed triangle (in steps within the shape) is not known held,
     #: for its first this many seconds at the shape (``wave``): a compact shape then
     #: grows outwards from the seeds instead of along its rim round free middles. Off
-    #: for targets with holes. 0 (the default for now): off, the paper's first site found.
-    #: 1200 formed disc 119 of 120 runs against 113 (``docs/algorithm.md``, session 44).
-    wave_s: float = 0.0
+    #: for targets with holes and for thin shapes (``thin_depth``: `T` took a median 47
+    #: min against 43 with it). 0: off, the paper's first site found. 1200 formed disc
+    #: 119 of 120 runs against 113 (``docs/algorithm.md``, sessions 44 and 45).
+    wave_s: float = 1200.0
 
     def __post_init__(self) -> None:
         for f in fields(self):
@@ -604,7 +605,7 @@ class ETParams:
         ``shape_depth`` is the first target's greatest cell depth (``lattice.depths``; 0:
         unknown) and ``shape_cells`` its cell count (0: unknown); a depth of at most
         ``thin_depth`` and at most ``thin_max_cells`` cells give the first formation the
-        thin settings.
+        thin settings, and no wave (``wave_s``).
         """
 
         def ticks(seconds: float) -> int:
@@ -677,7 +678,8 @@ class ETParams:
         watching = self.hole_watch_s > 0 and holes_known
         ci[C_HOLE_WATCH] = ticks(self.hole_watch_s) if watching else 0
         ci[C_TICKS_PER_S] = ticks_per_s
-        ci[C_WAVE] = ticks(self.wave_s) if self.wave_s > 0 else 0
+        # A thin shape closes no ring round a free middle: the wave only slows it.
+        ci[C_WAVE] = ticks(self.wave_s) if self.wave_s > 0 and not thin else 0
         cf = np.zeros(N_CF, dtype=np.float64)
         cf[F_SPACING] = self.spacing_mm
         cf[F_PAIR_TOL] = self.pair_tol_mm

@@ -60,8 +60,8 @@ from etswarm.algorithm.layout import LAYOUTS
 @click.option("--wave/--no-wave", default=True, show_default=True,
               help="In the first formation a searcher does not take a site while a site "
                    "beside it nearer the seeds is not known held, for its first 20 minutes "
-                   "at the shape, so compact shapes grow outwards from the seeds; off for "
-                   "shapes with holes (--no-wave: the paper's first site found; --et "
+                   "at the shape, so compact shapes grow outwards from the seeds; off for thin "
+                   "shapes and shapes with holes (--no-wave: the paper's first site found; --et "
                    "wave_s=S sets the seconds).")
 @click.option("--et", "et_options", multiple=True, metavar="NAME=VALUE",
               help="Set any ETParams field, e.g. --et pair_aim_mm=-1 (repeatable; see "
