@@ -342,7 +342,7 @@ class ETRun:
         A remnant that regrows to within radio range of another without merging with it
         stays a remnant of its own: counted into the half regrown beside it, a robot the
         cut left alone made that half's census look one short (traced on the demo's `T`
-        seed 7), and a 3-robot remnant beside the other half (seed 15 of session 45)
+        seed 7), and a 3-robot remnant beside the other half (seed 15, `wave_s=1200`)
         looked formed while it was not."""
         live = self.world.present & self.world.alive
         slots = self.controller.ri[:, R_TSLOT]
