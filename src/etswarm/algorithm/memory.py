@@ -14,11 +14,13 @@ memory only; the controller never reads another robot's row.
   values of one field lie together, so a scan of the table over a few fields (finding a
   sender, the Queued robots' rule) reads a few cache lines instead of one per row
 - ``nb_dist``    (N, M) float64: last distance estimate to that neighbour, mm
-- ``gene_flag``  (S, GX, GY) uint8 and ``gene_nn`` (S, GX, GY) int8: the genes of up to S
+- ``gene_flag``  (S, GX, GY) uint8 and ``gene_nn`` (S, GX, GY) int16: the genes of up to S
   targets (slot 0: the original shape; later slots: scaled shapes made by regeneration) as
   dense grids indexed by (X - ci[C_GENE_X0], Y - ci[C_GENE_Y0]); flag 1 on the shape,
   ``HOLE_FLAG`` on a hole of it (``lattice.enclosed_cells``: the middle of an ``O``,
-  which the paper proposes to flag in the gene), 0 outside
+  which the paper proposes to flag in the gene), 0 outside; NN in the low bits of
+  ``gene_nn`` (``wave.nn_of``), and in slot 0 with the wave on, the steps from the seed
+  triangle above them (``wave.HOPS_SHIFT``)
 - ``slot_info``  (S, SLOT_FIELDS) int64: per target slot its cell count, release limit,
   translation and turn; a robot that hears of a scaled target (its code n + 8192 * turn,
   tx, ty; ``regeneration.target_code``) finds its slot here (the slots memoise ``scale``,
