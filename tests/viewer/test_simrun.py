@@ -143,6 +143,20 @@ def test_view_command_shows_the_et_run(tmp_path) -> None:
     assert frames.shape[:3] == (3, 240, 320)
 
 
+def test_view_command_takes_et_options(tmp_path, monkeypatch) -> None:
+    from etswarm.algorithm.live import ETLive
+
+    seen = []
+    monkeypatch.setattr(ETLive, "__init__", lambda self, run: seen.append(run.config.et) or None)
+    monkeypatch.setattr("etswarm.cli.viewer_commands._write_video", lambda *a, **k: None)
+    result = CliRunner().invoke(view_command, ["disc", "--et", "wave_s=0", "--et",
+                                               "hole_watch_s=30", "--video", "x.gif"])
+    assert result.exit_code == 0, result.output
+    assert seen[0].wave_s == 0.0 and seen[0].hole_watch_s == 30.0
+    bad = CliRunner().invoke(view_command, ["disc", "--et", "wave_s=abc", "--frames", "1"])
+    assert bad.exit_code != 0 and "wave_s" in str(bad.exception)
+
+
 def test_view_command_argument_errors() -> None:
     runner = CliRunner()
     result = runner.invoke(view_command, ["--controller", "randomwalk", "T", "--frames", "1"])

@@ -87,6 +87,9 @@ DEFAULT_SPEED = {"et": 60.0, "randomwalk": 10.0}
 )
 @click.option("--release-interval", type=float, default=None, help="ET: seconds between releases.")
 @click.option("--fit", is_flag=True, help="ET: with fewer robots than cells, form scale(shape, N).")
+@click.option("--et", "et_options", multiple=True, metavar="NAME=VALUE",
+              help="ET: set any ETParams field, as for 'etswarm run', e.g. --et wave_s=0 "
+                   "(repeatable).")
 @click.option(
     "--speed",
     type=float,
@@ -111,6 +114,7 @@ def view(
     layout: str,
     release_interval: float | None,
     fit: bool,
+    et_options: tuple[str, ...],
     speed: float | None,
     video: Path | None,
     size: str,
@@ -144,7 +148,8 @@ def view(
             raise EtswarmError(
                 "missing SHAPE (a library name or a bitmap file); or use --controller randomwalk"
             )
-        live = _et_live(shape, robots, seed, loss, noise, max_time, layout, release_interval, fit)
+        live = _et_live(shape, robots, seed, loss, noise, max_time, layout, release_interval, fit,
+                        et_options)
     if video is not None:
         _write_video(live, video, fps, speed, frames or 300, window_size)
         return
@@ -181,13 +186,17 @@ def _et_live(  # type: ignore[no-untyped-def]
     layout: str,
     release_interval: float | None,
     fit: bool,
+    et_options: tuple[str, ...] = (),
 ):
     """The ET run of ``etswarm run`` with the same options, as a LiveRun."""
+    from dataclasses import replace
+
     from etswarm.algorithm.live import ETLive
-    from etswarm.algorithm.params import ETParams
+    from etswarm.algorithm.params import ETParams, parse_et_option
     from etswarm.algorithm.run import ETRun, RunConfig
 
     et = ETParams() if release_interval is None else ETParams(release_interval_s=release_interval)
+    et = replace(et, **dict(parse_et_option(text) for text in et_options))
     config = RunConfig(
         shape=shape,
         robots=robots,
