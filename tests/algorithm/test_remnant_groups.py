@@ -1,4 +1,5 @@
-"""The summary's remnants are the groups each census counted, not whoever stands within
+"""The summary's remnants are the radio groups of robots that work for one target (for a
+remnant too small to regrow, the robots its census counted), not whoever stands within
 radio range at the end."""
 
 from __future__ import annotations
