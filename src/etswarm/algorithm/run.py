@@ -335,6 +335,11 @@ class ETRun:
                 return group
         return np.array([robot])
 
+    def _too_small_slots(self) -> np.ndarray:
+        """(S,) bool per target slot: the empty target of a remnant too small to regrow
+        (slot 0, the first target, never is)."""
+        return np.array([s > 0 and len(c) == 0 for s, c in enumerate(self.controller.slot_cells)])
+
     def _groups(self) -> list[np.ndarray]:
         """The remnants, as arrays of robot IDs, largest first: radio-connected groups of
         live robots working for the same target slot, and those of a remnant too small
@@ -346,8 +351,7 @@ class ETRun:
         looked formed while it was not."""
         live = self.world.present & self.world.alive
         slots = self.controller.ri[:, R_TSLOT]
-        empty = np.array([s > 0 and len(c) == 0
-                          for s, c in enumerate(self.controller.slot_cells)])[slots]
+        empty = self._too_small_slots()[slots]
         keys = np.where(empty, len(self.controller.slot_cells) + 1 + self.counted_in, slots)
         radius = self.sim_params.comm_range_mm
         groups = [
@@ -425,6 +429,7 @@ class ETRun:
         target size, formed, too small), without the measures it does not use."""
         holds, stable = self._masks()
         tags = self.controller.tags
+        too_small = self._too_small_slots()
         report = []
         for group in self._groups():
             slot = self._slot_of(group)
@@ -438,7 +443,7 @@ class ETRun:
                 {
                     "target_cells": len(target),
                     "formed": bool(formed),
-                    "too_small": slot != 0 and len(target) == 0,
+                    "too_small": bool(too_small[slot]),
                     "slot": slot,
                 }
             )
@@ -489,7 +494,7 @@ class ETRun:
             target = self.controller.slot_cells[slot]
             counted = int(self.counted_in[group].max())
             census = self.censuses[counted] if counted >= 0 else None
-            too_small = slot != 0 and len(target) == 0
+            too_small = bool(self._too_small_slots()[slot])
             g_holds = holds & member
             g_formed = len(target) > 0 and is_formed(tags, g_holds, stable & member, target)
             start = 0.0 if self._is_first_target(slot) else (self.last_damage_s or 0.0)
