@@ -14,10 +14,11 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from etswarm.algorithm.memory import NB_LAST, NB_TX, NB_TY
+from etswarm.algorithm.memory import NB_ID, NB_LAST, NB_STATE, NB_TX, NB_TY
 from etswarm.algorithm.params import ETParams
 from etswarm.algorithm.run import ETRun, RunConfig
 from etswarm.algorithm.search import NO_SITE, find_site, foreign, window_centre
+from etswarm.algorithm.states import State
 from etswarm.errors import EtswarmError
 
 from .test_pair_side import GENE_X0, WINDOW, pair_world
@@ -80,3 +81,29 @@ def test_each_leg_of_a_cut_h_regrows_with_its_own_searchers() -> None:
         assert group["census_count"] == group["robots"] == group["target_cells"]
     assert summary["duplicate_tags"] == []
     assert summary["max_leaders_per_component"] <= 1
+
+
+def site_beside_a_foreign_robot(et: ETParams) -> tuple[bool, int, int]:
+    """``test_pair_side.pair_world``'s own pair at d, and a Stable robot of another shape
+    on (3, -3) (no site of the target) heard 45 mm away: on the searcher's lattice that tag
+    lies more than 100 mm from (1, 1), so the reading contradicts the site."""
+    _, nb, nb_dist, gene_flag, _, _, _, _ = pair_world()
+    gene_flag = gene_flag.astype(np.int64)
+    ci, cf = et.pack(31, gene_x0=GENE_X0, gene_y0=GENE_X0)
+    nb[0, 2, NB_ID] = 3
+    nb[0, 2, NB_STATE] = State.STABLE
+    nb[0, 2, NB_TX], nb[0, 2, NB_TY] = 3, -3
+    nb[0, :3, NB_LAST] = 10
+    nb_dist[0, :3] = (40.0, 40.6, 45.0)
+    held = np.zeros((5, 5), dtype=np.uint8)
+    found, x, y, _ = find_site(0, 10, 0, True, 1, -1, 0, nb, nb_dist, gene_flag, ci, cf, 1.0,
+                               3, held, *WINDOW, window_centre(cf, 0), 1.0, NO_SITE, NO_SITE)
+    return bool(found), int(x), int(y)
+
+
+def test_a_robot_of_another_shape_does_not_veto_a_site() -> None:
+    # Session 46, traced on `H` `split y=mid` seed 11: the last free site of one leg's
+    # scaled `H` had its two holders at d, but a robot of the other leg, 70 mm away,
+    # contradicted it on every pass; the searcher went round for 2 h.
+    assert site_beside_a_foreign_robot(ETParams(foreign_robots="follow"))[0] is False
+    assert site_beside_a_foreign_robot(ETParams()) == (True, 1, 1)

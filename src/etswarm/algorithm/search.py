@@ -573,6 +573,10 @@ def find_site(  # type: ignore[no-untyped-def]
                 for j in range(slots):
                     if nb[i, j, NB_ID] < 0 or not is_placed(nb[i, j, NB_STATE]):
                         continue
+                    if avoid_foreign and foreign(i, j, nb, gene_flag, ci):
+                        # another remnant's robot: its tag is in the same frame, but it
+                        # stands on a lattice of its own, so it says nothing of this site
+                        continue
                     jx = nb[i, j, NB_TX]
                     jy = nb[i, j, NB_TY]
                     pred = expected_distance(i, j, cx, cy, nb, ci, cf)
