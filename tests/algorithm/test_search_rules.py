@@ -176,7 +176,7 @@ def test_a_site_whose_reported_neighbour_is_not_heard_is_refused_on_settling() -
     # A reports (1, 1) held, but nobody of (1, 1) is heard: standing on (0, 1) the robot
     # would hear it at about d, so it is somewhere else. Settling (strict), it refuses.
     gene, ci, cf, nb, nb_dist = two_reference_table("on", holder_heard=False)
-    assert reported_but_unheard(0, 0, 1, 0, nb)
+    assert reported_but_unheard(0, 0, 1, 0, nb, gene, ci)
     found, *_ = find_site(
         0, 10, 0, True, -1, -1, 0, nb, nb_dist, gene, ci, cf, 1.0, 3, *NO_MEMORY,
             window_centre(cf, 0), 1.0, NO_SITE, NO_SITE,
@@ -184,7 +184,7 @@ def test_a_site_whose_reported_neighbour_is_not_heard_is_refused_on_settling() -
     assert not found
     # Once the holder of (1, 1) is heard too, the site is confirmed.
     gene, ci, cf, nb, nb_dist = two_reference_table("on", holder_heard=True)
-    assert not reported_but_unheard(0, 0, 1, 0, nb)
+    assert not reported_but_unheard(0, 0, 1, 0, nb, gene, ci)
     found, x, y, _ = find_site(
         0, 10, 0, True, -1, -1, 0, nb, nb_dist, gene, ci, cf, 1.0, 3, *NO_MEMORY,
             window_centre(cf, 0), 1.0, NO_SITE, NO_SITE,

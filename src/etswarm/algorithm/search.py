@@ -284,11 +284,14 @@ def came_from(ref_id, from_id, a_id, b_id):  # type: ignore[no-untyped-def]
 
 
 @njit
-def reported_but_unheard(i, cx, cy, since, nb):  # type: ignore[no-untyped-def]
+def reported_but_unheard(i, cx, cy, since, nb, gene_flag, ci):  # type: ignore[no-untyped-def]
     """A neighbour site of (cx, cy) is reported held by a placed robot heard since tick
     ``since``, yet robot i has heard no robot of that site since then. Its holder stands
     about d from the site, so a robot truly at (cx, cy) hears it: robot i is elsewhere
-    (on the mirror site of its pair, or where the lattice has torn)."""
+    (on the mirror site of its pair, or where the lattice has torn). With
+    ``foreign_robots`` "avoid", reports of ``foreign`` robots (``gene_flag``: robot i's
+    target) count for nothing: they are of another remnant's lattice."""
+    avoid_foreign = ci[C_AVOID_FOREIGN] == 1
     slots = nb.shape[1]
     for k in range(6):
         sx = cx + DIR_X[k]
@@ -306,7 +309,11 @@ def reported_but_unheard(i, cx, cy, since, nb):  # type: ignore[no-untyped-def]
                 heard = True
                 break
             q = direction_index(sx - jx, sy - jy)
-            if q >= 0 and (nb[i, j, NB_MASK] >> q) & 1:
+            if (
+                q >= 0
+                and (nb[i, j, NB_MASK] >> q) & 1
+                and not (avoid_foreign and foreign(i, j, nb, gene_flag, ci))
+            ):
                 reported = True
         if reported and not heard:
             return True
@@ -606,7 +613,7 @@ def find_site(  # type: ignore[no-untyped-def]
                         ts = nb[i, j, NB_TS]
                         if min_ts < 0 or ts < min_ts:
                             min_ts = ts
-                if ok and strict and reported_but_unheard(i, cx, cy, since, nb):
+                if ok and strict and reported_but_unheard(i, cx, cy, since, nb, gene_flag, ci):
                     ok = False
                 if ok and tol_scale > plain_scale and n_adjacent < wide_min:
                     ok = worst <= consist_tol and in_window(
@@ -841,7 +848,7 @@ def search_rule(  # type: ignore[no-untyped-def]
                 i, tick, since, nb, nb_dist, gene_flag, ci, cf, held_i, ox, oy
             )
             same = found and cx == ri[i, R_CAND_X] and cy == ri[i, R_CAND_Y]
-            same = same and not reported_but_unheard(i, cx, cy, since, nb)
+            same = same and not reported_but_unheard(i, cx, cy, since, nb, gene_flag, ci)
         capture_offset = cf[F_CAPTURE_OFFSET] if first else cf[F_REGROW_CAPTURE_OFFSET]
         patient = cf[F_PINCH_PATIENCE] <= 0.0 or at_shape < cf[F_PINCH_PATIENCE]
         if (
