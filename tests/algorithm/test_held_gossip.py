@@ -152,7 +152,13 @@ def test_fewer_tags_held_twice_on_a_bent_lattice() -> None:
 
 def free_sites_remembered_held(run: ETRun) -> int:
     """Over every searcher working for a regenerated target: the sites of its target that
-    its memory holds held while no robot of that target holds them."""
+    its memory holds held while no placed robot of its epoch holds them.
+
+    A robot of a sibling remnant (same epoch, another target) that holds a tag of the
+    searcher's target puts that tag in the memory when the searcher hears it: robots
+    carry no mark of their remnant (seen since session 46, when a searcher of the far
+    half got lost and went round the legs). Such a site is held, if not by its own
+    remnant. A chunk filed over the wrong memory window marks sites nobody holds."""
     controller = run.controller
     ri = controller.ri
     live = run.world.present & run.world.alive
@@ -160,7 +166,7 @@ def free_sites_remembered_held(run: ETRun) -> int:
     for i in np.flatnonzero(live & (ri[:, R_STATE] == State.SEARCH) & (ri[:, R_EPOCH] > 0)):
         slot = ri[i, R_TSLOT]
         cells = {tuple(t) for t in controller.slot_cells[slot].tolist()}
-        placed = live & (ri[:, R_TSLOT] == slot)
+        placed = live & (ri[:, R_EPOCH] == ri[i, R_EPOCH])
         placed &= (ri[:, R_STATE] >= State.INACTIVE) & (ri[:, R_STATE] <= State.STABLE)
         held = {tuple(t) for t in controller.tags[placed].tolist()}
         gx, gy = np.nonzero(controller.held[i])
