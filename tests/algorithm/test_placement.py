@@ -6,7 +6,12 @@ import numpy as np
 import pytest
 
 from etswarm.algorithm.params import ETParams
-from etswarm.algorithm.placement import RemnantView, choose_translation, triangles_at
+from etswarm.algorithm.placement import (
+    RemnantView,
+    choose_translation,
+    holds_a_pair,
+    triangles_at,
+)
 from etswarm.algorithm.run import ETRun, RunConfig
 from etswarm.errors import EtswarmError
 
@@ -183,3 +188,16 @@ def test_weigh_off_shape_trades_a_remnant_site_for_two_cells_off_the_old_shape()
     weigh = RemnantView(known, remnant, set(), set(), None, always_fits, old, True)
     assert choose_translation(BAR, leader, fewest) == (0, 0)
     assert choose_translation(BAR, leader, weigh) == (-1, 0)
+
+
+def test_a_leader_with_no_seed_triangle_keeps_two_neighbouring_robots() -> None:
+    """No triangle of held sites anywhere: a searcher can still locate a site from two
+    robots on neighbouring sites, never from one. Weighing the cells off the old shape,
+    the placement through the Leader alone covers as much (none) with no cell off; the
+    one that keeps its neighbour too puts (1, 1) off the old shape, and wins."""
+    tri = np.array([[0, 0], [1, 0], [1, 1]])
+    leader = (0, 0)
+    old = frozenset({(-1, 0), (0, 0), (0, 1), (1, 0)})
+    weigh = RemnantView({(1, 0)}, {(1, 0)}, set(), set(), None, always_fits, old, True)
+    assert choose_translation(tri, leader, weigh) == (0, 0)
+    assert holds_a_pair({(0, 0), (1, 0)}) and not holds_a_pair({(0, 0), (1, 2), (2, 0)})

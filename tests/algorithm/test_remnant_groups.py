@@ -29,3 +29,20 @@ def test_a_robot_the_cut_left_alone_stays_a_remnant_of_its_own() -> None:
                 if e["kind"] == "census" and e["count"] == 1]
     near = run._radio_group_of(stray)
     assert len(near) > 1
+
+
+def test_three_robots_with_no_two_neighbours_are_too_small_and_stay_put() -> None:
+    # `T` seed 4 cut at x=0 leaves robots 30, 32 and 41 on (-1, -2), (0, 0) and (-2, -4),
+    # about 70 mm apart: no two on neighbouring sites. Before session 46 their Leader
+    # kept one of them on a scaled `T`, the other two searched for hours and got lost,
+    # as no site can be located from one robot, and the run never settled.
+    run = ETRun(RunConfig(shape="T", seed=4, max_time_s=4 * 3600, damage=("split x=0",),
+                          et=ETParams(**SESSION_44_FORMATION)))
+    summary = run.run()
+    assert summary["settled"] and summary["sim_time_s"] < 4 * 3600, summary["components"]
+    (small,) = [c for c in summary["components"] if c["too_small"]]
+    assert small["robots"] == small["census_count"] == 3 and small["target_cells"] == 0
+    assert summary["states"]["Search"] == 0
+    for comp in summary["components"]:
+        if not comp["too_small"]:
+            assert comp["formed"] and comp["census_count"] == comp["robots"], comp

@@ -44,6 +44,11 @@ def triangles_at(tag: Tag, held: set[Tag]) -> list[tuple[Tag, Tag, Tag]]:
     return out
 
 
+def holds_a_pair(kept: set[Tag]) -> bool:
+    """Whether two of the sites ``kept`` are lattice neighbours."""
+    return any((x + a, y + b) in kept for x, y in kept for a, b in RING)
+
+
 @dataclass(frozen=True)
 class RemnantView:
     """What the Leader knows of its remnant when it places the scaled shape.
@@ -98,7 +103,7 @@ def choose_translation(
         seeds = "any" if view.enclosed else "leader"
     own = [(leader[0] - int(sx), leader[1] - int(sy)) for sx, sy in cells.tolist()]
     held = view.known | {leader}
-    best = _best(cells, own, triangles_at(leader, held), view)
+    best = _best(cells, own, triangles_at(leader, held), view, held=held)
     seeded_here = best is not None and best[0] == 0
     if seeds == "leader" and seeded_here:
         return best[-2], best[-1]
@@ -107,7 +112,9 @@ def choose_translation(
     triangles = [t for tag in sorted(held) for t in triangles_at(tag, held)]
     if triangles:
         shifts = sorted({(kx - int(sx), ky - int(sy)) for kx, ky in held for sx, sy in cells})
-        anywhere = _best(cells, shifts, triangles, view, leader if seeds == "any" else None)
+        anywhere = _best(
+            cells, shifts, triangles, view, leader if seeds == "any" else None, held=held
+        )
         if anywhere is not None and anywhere[0] == 0:
             if seeded_here and not _far_better(anywhere, best, len(cells)):
                 return best[-2], best[-1]
@@ -140,7 +147,7 @@ def choose_placement(
         shift = choose_translation(turned, leader, view, seeds)
         if shift is None:
             continue
-        key = _best(turned, [shift], triangles, view)
+        key = _best(turned, [shift], triangles, view, held=pool)
         if key is None:
             continue
         if best_key is None or key[:2] < best_key[:2] or (
@@ -167,22 +174,28 @@ def _best(
     triangles: list[tuple[Tag, Tag, Tag]],
     view: RemnantView,
     leader: Tag | None = None,
+    held: set[Tag] | frozenset[Tag] = frozenset(),
 ) -> tuple[int, ...] | None:
     """The least ranking key (see ``choose_translation``) over ``shifts``, ending with the
     shift (tx, ty); None when no shift fits. With ``leader``, a shift that keeps the
-    Leader's site wins a tie before the shortest shift does."""
+    Leader's site wins a tie before the shortest shift does. A shift on no seed triangle
+    ranks better when it keeps two adjacent sites of ``held``: searchers can locate a site
+    from such a pair, and from one robot alone they cannot."""
     best: tuple[int, ...] | None = None
     for tx, ty in shifts:
         moved = cells + np.array([tx, ty])
         if not view.fits(moved):
             continue
         sites = {(int(x), int(y)) for x, y in moved.tolist()}
-        seeded = any(all(c in sites for c in tri) for tri in triangles)
+        if any(all(c in sites for c in tri) for tri in triangles):
+            seeded = 0
+        else:
+            seeded = 1 if holds_a_pair(sites & held) else 2
         within = 0 if view.extent is None else int(cells_in(moved, view.extent).sum())
         off = len(sites - view.old_shape) if view.old_shape else 0
         covered = len(sites & view.remnant) - (off if view.weigh_off_shape else 0)
         key = (
-            0 if seeded else 1, len(sites & view.enclosed), -covered, off,
+            seeded, len(sites & view.enclosed), -covered, off,
             -within, -len(sites & view.known), len(sites & view.silent),
             0 if leader is None or leader in sites else 1, abs(tx) + abs(ty), tx, ty,
         )

@@ -34,7 +34,7 @@ from etswarm.algorithm.memory import (
     SLOT_TY,
 )
 from etswarm.algorithm.params import ETParams
-from etswarm.algorithm.placement import RemnantView, choose_placement
+from etswarm.algorithm.placement import RemnantView, choose_placement, holds_a_pair
 from etswarm.algorithm.regeneration import turns_coded
 from etswarm.algorithm.silent import enclosed_tags, silent_tags
 from etswarm.algorithm.states import PLACED_STATES, STATE_NAMES, State
@@ -277,7 +277,8 @@ class ETRun:
         (``placement.choose_placement``; (cells, tx, ty, turn)): on a seed triangle, the
         Leader's own if it can, over as much of the remnant as it knows of, and off the
         sites that fell silent (a dead robot may stand there, see ``silent``). Empty when
-        n < 3 (too small to seed). With ``false_alarm`` "resume", a census n equal to the
+        n < 3, or when it keeps no two robots that are lattice neighbours: too small to
+        seed. With ``false_alarm`` "resume", a census n equal to the
         cell count of the Leader's current target keeps that target, its turn and its
         translation (a false alarm)."""
         if n < 3:
@@ -325,7 +326,14 @@ class ETRun:
         if chosen is None:
             return cells, 0, 0, 0
         turn, tx, ty = chosen
-        return turn_cells(cells, turn) + np.array([tx, ty]), tx, ty, turn
+        placed = turn_cells(cells, turn) + np.array([tx, ty])
+        kept = {(int(x), int(y)) for x, y in placed.tolist()} & (known | remnant | {(lx, ly)})
+        if not holds_a_pair(kept):
+            # No two robots it keeps are neighbours (T split x=0 seed 4: three robots a
+            # second-ring step apart, about 70 mm): a searcher cannot locate a site from one
+            # robot, so nothing would grow. Too small to seed, as with n < 3.
+            return np.zeros((0, 2), dtype=np.int64), 0, 0, 0
+        return placed, tx, ty, turn
 
     def _radio_group_of(self, robot: int) -> np.ndarray:
         """IDs of the live robots radio-connected to ``robot`` now."""
