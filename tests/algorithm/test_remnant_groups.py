@@ -6,6 +6,7 @@ from __future__ import annotations
 
 from etswarm.algorithm.params import ETParams
 from etswarm.algorithm.run import ETRun, RunConfig
+from etswarm.cli.run_outputs import describe
 
 from .traced import SESSION_44_FORMATION
 
@@ -43,6 +44,8 @@ def test_three_robots_with_no_two_neighbours_are_too_small_and_stay_put() -> Non
     (small,) = [c for c in summary["components"] if c["too_small"]]
     assert small["robots"] == small["census_count"] == 3 and small["target_cells"] == 0
     assert summary["states"]["Search"] == 0
+    assert any(line.endswith("3 robots, census 3 (tree), too small to seed a scaled shape, "
+                             "stays put") for line in describe(summary)), describe(summary)
     for comp in summary["components"]:
         if not comp["too_small"]:
             assert comp["formed"] and comp["census_count"] == comp["robots"], comp

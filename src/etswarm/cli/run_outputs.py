@@ -149,10 +149,16 @@ def describe(summary: dict[str, Any]) -> list[str]:
     if summary["damage"]:
         method = summary.get("census", "tree")
         for k, comp in enumerate(summary["components"]):
-            lines.append(
+            head = (
                 f"remnant {k}: {comp['robots']} robots, census {comp['census_count']} "
                 f"({method}), "
-                f"target {comp['target_cells']} cells, "
+            )
+            if comp["too_small"]:
+                lines.append(head + "too small to seed a scaled shape, stays put")
+                continue
+            lines.append(
+                head
+                + f"target {comp['target_cells']} cells, "
                 f"{'reformed' if comp['formed'] else 'not reformed'}"
                 + (
                     f" {hms(comp['time_to_stable_s'])} after the damage"
