@@ -7,6 +7,7 @@ import numpy as np
 from etswarm.algorithm.memory import (
     R_EXCUSED,
     R_FIELDS,
+    R_GROWTH,
     R_LEFT,
     R_LEFT_X,
     R_LEFT_Y,
@@ -15,7 +16,7 @@ from etswarm.algorithm.memory import (
     R_TAG_Y,
 )
 from etswarm.algorithm.params import C_TICKS_REJOIN, ETParams
-from etswarm.algorithm.rejoin import rejoin_if_cut_off
+from etswarm.algorithm.rejoin import ALONE_REJOINS, rejoin_if_alone, rejoin_if_cut_off
 from etswarm.algorithm.run import ETRun, RunConfig
 from etswarm.algorithm.states import State
 from etswarm.measures.formation import components
@@ -87,3 +88,34 @@ def test_a_tip_robot_shoved_out_of_range_goes_back_to_its_site() -> None:
     assert [c["robots"] for c in summary["components"]] == [26, 24]
     assert all(c["formed"] and c["jaccard"] == 1.0 for c in summary["components"])
     assert summary["duplicate_tags"] == []
+
+
+def test_an_active_robot_of_a_regrowth_that_hears_nobody_leaves_after_the_longer_wait() -> None:
+    # Session 46, starfish split y=mid seed 14: kept robot 6 stood 81 mm from every other
+    # robot and stayed Active for 1.6 h, its site free.
+    ci, _ = ETParams().pack(31, gene_x0=-5, gene_y0=-5)
+    wait = ALONE_REJOINS * int(ci[C_TICKS_REJOIN])
+    ri, held = stable_robot()
+    ri[0, R_STATE] = State.ACTIVE
+    ri[0, R_GROWTH] = 1  # it works for a regrown target
+    assert not rejoin_if_alone(0, 100, False, ri, ci, held, 0, 0)
+    assert not rejoin_if_alone(0, 100 + wait // 2, True, ri, ci, held, 0, 0)  # heard one
+    assert not rejoin_if_alone(0, 101 + wait // 2, False, ri, ci, held, 0, 0)
+    assert not rejoin_if_alone(0, 100 + wait, False, ri, ci, held, 0, 0)
+    assert ri[0, R_STATE] == State.ACTIVE
+    assert rejoin_if_alone(0, 101 + wait // 2 + wait, False, ri, ci, held, 0, 0)
+    assert ri[0, R_STATE] == State.SEARCH
+    assert (ri[0, R_LEFT], ri[0, R_LEFT_X], ri[0, R_LEFT_Y]) == (1, *TAG)
+    assert held[TAG] == 0
+
+
+def test_an_active_robot_of_the_first_formation_never_leaves_alone() -> None:
+    ci, _ = ETParams().pack(31, gene_x0=-5, gene_y0=-5)
+    off, _ = ETParams(isolated_rejoin_s=0).pack(31, gene_x0=-5, gene_y0=-5)
+    for consts, growth in ((ci, 0), (off, 1)):
+        ri, held = stable_robot()
+        ri[0, R_STATE] = State.ACTIVE
+        ri[0, R_GROWTH] = growth
+        for tick in range(0, 20 * ALONE_REJOINS * int(ci[C_TICKS_REJOIN]), 2000):
+            assert not rejoin_if_alone(0, tick, False, ri, consts, held, 0, 0)
+        assert ri[0, R_STATE] == State.ACTIVE

@@ -28,6 +28,7 @@ from etswarm.algorithm.memory import (
     NB_TY,
     R_BELOW_SINCE,
     R_COUNT,
+    R_CUT_OFF_SINCE,
     R_EPOCH,
     R_EXCUSED,
     R_HELD_EPOCH,
@@ -56,7 +57,7 @@ from etswarm.algorithm.params import (
     F_SPACING,
 )
 from etswarm.algorithm.regeneration import start_election
-from etswarm.algorithm.rejoin import rejoin_if_cut_off
+from etswarm.algorithm.rejoin import rejoin_if_alone, rejoin_if_cut_off
 from etswarm.algorithm.site_memory import is_held
 
 #: Inactive robots with no Active neighbour for this many evaluations become Active.
@@ -162,9 +163,12 @@ def placed_rule(i, tick, ri, nb, nb_dist, gene, ci, cf, held_i, ox, oy):  # type
     lower_active = False
     any_active = False
     heard_placed = False  # any placed robot of its target, lately
+    heard_any = False  # any robot at all, lately
     for m in range(slots):
         if nb[i, m, NB_ID] < 0:
             continue
+        if tick - nb[i, m, NB_LAST] <= fresh:
+            heard_any = True
         st = nb[i, m, NB_STATE]
         if not is_placed(st):
             continue
@@ -217,9 +221,12 @@ def placed_rule(i, tick, ri, nb, nb_dist, gene, ci, cf, held_i, ox, oy):  # type
         if count >= nn:
             set_state(i, ri, STABLE, tick)
             ri[i, R_BELOW_SINCE] = -1
+            ri[i, R_CUT_OFF_SINCE] = 0
         elif lower_active:
             set_state(i, ri, QUASI, tick)
             ri[i, R_QUASI_UNTIL] = tick + ci[C_TICKS_QUASI]
+        elif rejoin_if_alone(i, tick, heard_any, ri, ci, held_i, ox, oy):
+            return  # kept where no robot hears it: it searches for its site again
     elif state == QUASI:
         if tick >= ri[i, R_QUASI_UNTIL]:
             set_state(i, ri, ACTIVE, tick)

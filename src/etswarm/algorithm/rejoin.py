@@ -22,6 +22,7 @@ from __future__ import annotations
 
 from numba import njit
 
+from etswarm.algorithm.kernel_util import first_growth
 from etswarm.algorithm.memory import (
     R_CUT_OFF_SINCE,
     R_EXCUSED,
@@ -38,6 +39,10 @@ from etswarm.algorithm.params import C_TICKS_REJOIN
 from etswarm.algorithm.search import begin_search
 from etswarm.algorithm.site_memory import forget_left_site
 
+#: An Active robot that hears nobody leaves after this many times ``C_TICKS_REJOIN``: a kept
+#: robot waits longer than a Stable one for the growth to reach it.
+ALONE_REJOINS = 5
+
 
 @njit
 def rejoin_if_cut_off(i, tick, heard_placed, excused_only, ri, ci, held_i, ox, oy):  # type: ignore[no-untyped-def]
@@ -45,14 +50,46 @@ def rejoin_if_cut_off(i, tick, heard_placed, excused_only, ri, ci, held_i, ox, o
     of its target lately, ``excused_only`` whether its count is met only with excused
     sites. Once it has been cut off so for ``C_TICKS_REJOIN`` it leaves its site and
     searches (returns True)."""
-    if ci[C_TICKS_REJOIN] == 0 or heard_placed or not excused_only:
+    limit = ci[C_TICKS_REJOIN]
+    if limit == 0 or not cut_off_for(i, tick, not heard_placed and excused_only, limit, ri):
+        return False
+    leave_site(i, tick, ri, held_i, ox, oy)
+    return True
+
+
+@njit
+def rejoin_if_alone(i, tick, heard_any, ri, ci, held_i, ox, oy):  # type: ignore[no-untyped-def]
+    """Active robot i of a regenerated target, this evaluation: ``heard_any`` whether it
+    heard any robot at all lately. Once it has heard none for ``ALONE_REJOINS`` times
+    ``C_TICKS_REJOIN`` it leaves its site and searches for it (returns True), as a cut-off
+    Stable robot does. Such a robot was kept where the regrown lattice does not put its
+    site: starfish ``split y=mid`` seed 14, robot 6 on (1, 3) stood 57 mm from it and 81
+    mm from every other robot, heard nobody, so its memory never learnt its neighbours
+    were held, and it stayed Active for the last 1.6 h of the run, its site free."""
+    limit = ALONE_REJOINS * ci[C_TICKS_REJOIN]
+    alone = not heard_any and not first_growth(i, ri)
+    if limit == 0 or not cut_off_for(i, tick, alone, limit, ri):
+        return False
+    leave_site(i, tick, ri, held_i, ox, oy)
+    return True
+
+
+@njit(inline="always")
+def cut_off_for(i, tick, cut_off, limit, ri):  # type: ignore[no-untyped-def]
+    """Keep in R_CUT_OFF_SINCE since when robot i has been ``cut_off`` at every
+    evaluation; whether that is ``limit`` ticks or more."""
+    if not cut_off:
         ri[i, R_CUT_OFF_SINCE] = 0
         return False
     if ri[i, R_CUT_OFF_SINCE] == 0:
         ri[i, R_CUT_OFF_SINCE] = tick + 1
         return False
-    if tick - (ri[i, R_CUT_OFF_SINCE] - 1) < ci[C_TICKS_REJOIN]:
-        return False
+    return tick - (ri[i, R_CUT_OFF_SINCE] - 1) >= limit
+
+
+@njit
+def leave_site(i, tick, ri, held_i, ox, oy):  # type: ignore[no-untyped-def]
+    """Placed robot i gives its site up and searches for it again (``R_LEFT``)."""
     x = ri[i, R_TAG_X]
     y = ri[i, R_TAG_Y]
     begin_search(i, tick, ri)
@@ -65,4 +102,3 @@ def rejoin_if_cut_off(i, tick, heard_placed, excused_only, ri, ci, held_i, ox, o
     ri[i, R_LEFT_X] = x
     ri[i, R_LEFT_Y] = y
     forget_left_site(held_i, ri, i, ox, oy)
-    return True
