@@ -5,6 +5,8 @@ from __future__ import annotations
 import numpy as np
 
 from etswarm.algorithm.memory import (
+    NB_ID,
+    NB_LAST,
     R_EXCUSED,
     R_FIELDS,
     R_GROWTH,
@@ -14,6 +16,7 @@ from etswarm.algorithm.memory import (
     R_STATE,
     R_TAG_X,
     R_TAG_Y,
+    allocate,
 )
 from etswarm.algorithm.params import C_TICKS_REJOIN, ETParams
 from etswarm.algorithm.rejoin import ALONE_REJOINS, rejoin_if_alone, rejoin_if_cut_off
@@ -90,6 +93,15 @@ def test_a_tip_robot_shoved_out_of_range_goes_back_to_its_site() -> None:
     assert summary["duplicate_tags"] == []
 
 
+def table(heard_at: int | None) -> np.ndarray:
+    """Robot 0's neighbour table: empty, or robot 5 last heard at tick ``heard_at``."""
+    _, nb, _ = allocate(1)
+    if heard_at is not None:
+        nb[0, 0, NB_ID] = 5
+        nb[0, 0, NB_LAST] = heard_at
+    return nb
+
+
 def test_an_active_robot_of_a_regrowth_that_hears_nobody_leaves_after_the_longer_wait() -> None:
     # Session 46, starfish split y=mid seed 14: kept robot 6 stood 81 mm from every other
     # robot and stayed Active for 1.6 h, its site free.
@@ -98,12 +110,13 @@ def test_an_active_robot_of_a_regrowth_that_hears_nobody_leaves_after_the_longer
     ri, held = stable_robot()
     ri[0, R_STATE] = State.ACTIVE
     ri[0, R_GROWTH] = 1  # it works for a regrown target
-    assert not rejoin_if_alone(0, 100, False, ri, ci, held, 0, 0)
-    assert not rejoin_if_alone(0, 100 + wait // 2, True, ri, ci, held, 0, 0)  # heard one
-    assert not rejoin_if_alone(0, 101 + wait // 2, False, ri, ci, held, 0, 0)
-    assert not rejoin_if_alone(0, 100 + wait, False, ri, ci, held, 0, 0)
+    assert not rejoin_if_alone(0, 100, ri, table(None), ci, held, 0, 0)
+    mid = 100 + wait // 2
+    assert not rejoin_if_alone(0, mid, ri, table(mid), ci, held, 0, 0)  # heard one
+    assert not rejoin_if_alone(0, 101 + wait // 2, ri, table(None), ci, held, 0, 0)
+    assert not rejoin_if_alone(0, 100 + wait, ri, table(None), ci, held, 0, 0)
     assert ri[0, R_STATE] == State.ACTIVE
-    assert rejoin_if_alone(0, 101 + wait // 2 + wait, False, ri, ci, held, 0, 0)
+    assert rejoin_if_alone(0, 101 + wait // 2 + wait, ri, table(None), ci, held, 0, 0)
     assert ri[0, R_STATE] == State.SEARCH
     assert (ri[0, R_LEFT], ri[0, R_LEFT_X], ri[0, R_LEFT_Y]) == (1, *TAG)
     assert held[TAG] == 0
@@ -117,5 +130,5 @@ def test_an_active_robot_of_the_first_formation_never_leaves_alone() -> None:
         ri[0, R_STATE] = State.ACTIVE
         ri[0, R_GROWTH] = growth
         for tick in range(0, 20 * ALONE_REJOINS * int(ci[C_TICKS_REJOIN]), 2000):
-            assert not rejoin_if_alone(0, tick, False, ri, consts, held, 0, 0)
+            assert not rejoin_if_alone(0, tick, ri, table(None), consts, held, 0, 0)
         assert ri[0, R_STATE] == State.ACTIVE

@@ -163,12 +163,9 @@ def placed_rule(i, tick, ri, nb, nb_dist, gene, ci, cf, held_i, ox, oy):  # type
     lower_active = False
     any_active = False
     heard_placed = False  # any placed robot of its target, lately
-    heard_any = False  # any robot at all, lately
     for m in range(slots):
         if nb[i, m, NB_ID] < 0:
             continue
-        if tick - nb[i, m, NB_LAST] <= fresh:
-            heard_any = True
         st = nb[i, m, NB_STATE]
         if not is_placed(st):
             continue
@@ -225,7 +222,7 @@ def placed_rule(i, tick, ri, nb, nb_dist, gene, ci, cf, held_i, ox, oy):  # type
         elif lower_active:
             set_state(i, ri, QUASI, tick)
             ri[i, R_QUASI_UNTIL] = tick + ci[C_TICKS_QUASI]
-        elif rejoin_if_alone(i, tick, heard_any, ri, ci, held_i, ox, oy):
+        elif rejoin_if_alone(i, tick, ri, nb, ci, held_i, ox, oy):
             return  # kept where no robot hears it: it searches for its site again
     elif state == QUASI:
         if tick >= ri[i, R_QUASI_UNTIL]:

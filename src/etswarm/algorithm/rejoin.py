@@ -24,6 +24,8 @@ from numba import njit
 
 from etswarm.algorithm.kernel_util import first_growth
 from etswarm.algorithm.memory import (
+    NB_ID,
+    NB_LAST,
     R_CUT_OFF_SINCE,
     R_EXCUSED,
     R_LEFT,
@@ -35,7 +37,7 @@ from etswarm.algorithm.memory import (
     R_TAG_X,
     R_TAG_Y,
 )
-from etswarm.algorithm.params import C_TICKS_REJOIN
+from etswarm.algorithm.params import C_TICKS_NB_FRESH, C_TICKS_REJOIN
 from etswarm.algorithm.search import begin_search
 from etswarm.algorithm.site_memory import forget_left_site
 
@@ -58,20 +60,29 @@ def rejoin_if_cut_off(i, tick, heard_placed, excused_only, ri, ci, held_i, ox, o
 
 
 @njit
-def rejoin_if_alone(i, tick, heard_any, ri, ci, held_i, ox, oy):  # type: ignore[no-untyped-def]
-    """Active robot i of a regenerated target, this evaluation: ``heard_any`` whether it
-    heard any robot at all lately. Once it has heard none for ``ALONE_REJOINS`` times
+def rejoin_if_alone(i, tick, ri, nb, ci, held_i, ox, oy):  # type: ignore[no-untyped-def]
+    """Active robot i of a regenerated target, this evaluation. Once it has heard no robot
+    at all (its table ``nb``, fresh within ``C_TICKS_NB_FRESH``) for ``ALONE_REJOINS`` times
     ``C_TICKS_REJOIN`` it leaves its site and searches for it (returns True), as a cut-off
     Stable robot does. Such a robot was kept where the regrown lattice does not put its
     site: starfish ``split y=mid`` seed 14, robot 6 on (1, 3) stood 57 mm from it and 81
     mm from every other robot, heard nobody, so its memory never learnt its neighbours
     were held, and it stayed Active for the last 1.6 h of the run, its site free."""
     limit = ALONE_REJOINS * ci[C_TICKS_REJOIN]
-    alone = not heard_any and not first_growth(i, ri)
+    alone = not first_growth(i, ri) and not heard_anyone(i, tick, nb, ci[C_TICKS_NB_FRESH])
     if limit == 0 or not cut_off_for(i, tick, alone, limit, ri):
         return False
     leave_site(i, tick, ri, held_i, ox, oy)
     return True
+
+
+@njit(inline="always")
+def heard_anyone(i, tick, nb, fresh):  # type: ignore[no-untyped-def]
+    """Robot i heard some robot within the last ``fresh`` ticks."""
+    for m in range(nb.shape[1]):
+        if nb[i, m, NB_ID] >= 0 and tick - nb[i, m, NB_LAST] <= fresh:
+            return True
+    return False
 
 
 @njit(inline="always")
