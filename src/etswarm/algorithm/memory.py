@@ -226,7 +226,10 @@ R_WATCH_ID0 = R_LEFT_Y + 1
 R_WATCH_T0 = R_WATCH_ID0 + 1
 R_WATCH_ID1 = R_WATCH_T0 + 1
 R_WATCH_T1 = R_WATCH_ID1 + 1
-R_FIELDS = R_WATCH_T1 + 1
+#: A searcher of a regenerated target that could not confirm its site edge-follows at
+#: ``PLUNGE_AIM_MM`` until this tick (``search.plunge_aim``).
+R_PLUNGE_UNTIL = R_WATCH_T1 + 1
+R_FIELDS = R_PLUNGE_UNTIL + 1
 
 PHASE_NORMAL = 0
 PHASE_ELECTING = 1

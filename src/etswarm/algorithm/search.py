@@ -64,6 +64,7 @@ from etswarm.algorithm.memory import (
     R_ON_SHAPE,
     R_ORBIT,
     R_PINCH_REFUSED,
+    R_PLUNGE_UNTIL,
     R_RECENT0,
     R_REF_ID,
     R_REF_MOVED,
@@ -108,6 +109,7 @@ from etswarm.algorithm.params import (
     C_TICKS_HOVER,
     C_TICKS_MOVE_FRESH,
     C_TICKS_NB_FRESH,
+    C_TICKS_PLUNGE,
     C_TICKS_SETTLE,
     C_TICKS_YIELD_MAX,
     F_AIM_RELAX,
@@ -191,6 +193,9 @@ STRIDE_BAND_MM = 4.0
 #: diving searchers shoved placed robots apart: 2 of 260 first formations (starfish)
 #: and 2 of 6 bigdisc runs started an election with no damage done; with 1 mm, none.
 CLEARANCE_BELOW_AIM_MM = 1.0
+#: A plunging searcher (``R_PLUNGE_UNTIL``, ``regrowth_plunge_s``) edge-follows placed
+#: robots at this distance (mm): a 33 mm body and 2 mm.
+PLUNGE_AIM_MM = 35.0
 CREEP_PERIOD_TICKS = 24
 CREEP_STOP_TICKS = 16
 CREEP_HOLD_TICKS = 62
@@ -225,6 +230,7 @@ def begin_search(i, tick, ri):  # type: ignore[no-untyped-def]
     reset_odometry(i, ri)
     ri[i, R_REF_MOVED] = 0
     ri[i, R_PINCH_REFUSED] = 0
+    ri[i, R_PLUNGE_UNTIL] = 0
     ri[i, R_LEFT] = 0
     forget_recent_references(i, ri)
 
@@ -887,6 +893,15 @@ def search_rule(  # type: ignore[no-untyped-def]
             ri[i, R_SUB] = SUB_FOLLOW
             ri[i, R_SUB_SINCE] = tick
             ri[i, R_COOLDOWN] = tick + ci[C_TICKS_COOLDOWN]
+            if (
+                not first
+                and ci[C_TICKS_PLUNGE] > 0
+                and at_shape >= widening_ticks(ri[i, R_GROWTH], cf)
+            ):
+                # Long at a regrowing shape, it stood near a site and could not take it:
+                # it may be in a notch's mouth, short of the site; for a while it
+                # edge-follows nearer, into the notch.
+                ri[i, R_PLUNGE_UNTIL] = tick + ci[C_TICKS_PLUNGE]
         return
 
     # Yield to a lower-ID searcher nearby, unless this robot stands still and that one is
@@ -960,6 +975,9 @@ def search_rule(  # type: ignore[no-untyped-def]
     # tolerances have widened (``dive_mm``). Only placed robots may then come nearer than
     # the clearance.
     dive = dive_depth(at_shape, ri[i, R_GROWTH], cf)
+    if tick < ri[i, R_PLUNGE_UNTIL]:
+        # plunging (a failed confirmation after damage): it keeps PLUNGE_AIM_MM
+        dive = max(dive, d + cf[F_FOLLOW_OFFSET] - PLUNGE_AIM_MM)
     aim = d + cf[F_FOLLOW_OFFSET] - dive
     # Kilobot orbit (both pivots also move the body forward): pivot away from the group
     # when the last reading of the reference is nearer than the aim, towards it otherwise.
