@@ -227,7 +227,7 @@ R_WATCH_T0 = R_WATCH_ID0 + 1
 R_WATCH_ID1 = R_WATCH_T0 + 1
 R_WATCH_T1 = R_WATCH_ID1 + 1
 #: A searcher of a regenerated target that could not confirm its site edge-follows at
-#: ``PLUNGE_AIM_MM`` until this tick (``search.plunge_aim``).
+#: ``search.PLUNGE_AIM_MM`` until this tick (``ETParams.regrowth_plunge_s``).
 R_PLUNGE_UNTIL = R_WATCH_T1 + 1
 R_FIELDS = R_PLUNGE_UNTIL + 1
 

@@ -66,7 +66,7 @@ C_TICKS_REJOIN = 49  # a Stable robot cut off this long, Stable only by excused 
 C_HOLE_WATCH = 50  # ticks a searcher seen in a hole keeps others from walling it off (0: off)
 C_TICKS_PER_S = 51  # control ticks per simulated second
 C_WAVE = 52  # ticks at the shape a searcher keeps to the wave from the seeds (0: off)
-C_TICKS_PLUNGE = 53  # after damage, a long-searching robot that fails to confirm dives this long
+C_TICKS_PLUNGE = 53  # after damage, a searcher that cannot take its site plunges this long (0: off)
 N_CI = 54
 
 #: Values of ``ci[C_RIGHT_OF_WAY]``: never, always, or in the first formation alone (a
