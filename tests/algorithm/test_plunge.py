@@ -1,6 +1,8 @@
-"""``regrowth_plunge_s``: after damage, a searcher long at the shape that stopped on a site
-and could not confirm it edge-follows at ``PLUNGE_AIM_MM`` for a while, so that it gets
-through a notch's mouth narrower than twice its usual aim to the site at the bottom."""
+"""``regrowth_plunge_s``: a searcher long at the shape that stopped on a site and could not
+confirm it edge-follows at ``PLUNGE_AIM_MM`` for a while, so that it gets through a notch's
+mouth narrower than twice its usual aim to the site at the bottom. After damage "long" is
+``regrowth_widen_s``; in the first formation it is ``first_plunge_after_s``, and never on
+a target with holes."""
 
 from __future__ import annotations
 
@@ -24,7 +26,7 @@ from etswarm.algorithm.memory import (
     SUB_SETTLE,
     allocate,
 )
-from etswarm.algorithm.params import ETParams
+from etswarm.algorithm.params import C_FIRST_PLUNGE, ETParams
 from etswarm.algorithm.run import ETRun, RunConfig
 from etswarm.algorithm.search import PLUNGE_AIM_MM, begin_search, search_rule
 from etswarm.algorithm.states import State
@@ -38,17 +40,18 @@ LONG_AT_SHAPE_TICKS = 3 * 1200 * TICKS_PER_S
 
 
 def searcher(growth: int, reading_mm: float, *, settling: bool = False,
-             plunge_s: float = 20.0) -> tuple:
-    """Searcher 5, long at the shape, hearing one Stable robot on tag (0, 0) at
+             plunge_s: float = 20.0, first_after_s: float = 800.0,
+             at_shape_s: float = 3 * 1200) -> tuple:
+    """Searcher 5, ``at_shape_s`` at the shape, hearing one Stable robot on tag (0, 0) at
     ``reading_mm``; ``growth`` 0 is the first formation, 1 a regenerated target. With
     ``settling`` it has stood on site (1, 0) for its settle time, where it cannot confirm
     the site (one robot locates nothing). Returns what ``search_rule`` needs."""
     gene = np.ones((5, 5), dtype=np.int64)
-    params = ETParams(regrowth_plunge_s=plunge_s)
+    params = ETParams(regrowth_plunge_s=plunge_s, first_plunge_after_s=first_after_s)
     ci, cf = params.pack(TICKS_PER_S, gene_x0=-2, gene_y0=-2)
     ri, nb, nb_dist = allocate(30)
     begin_search(SEARCHER, TICK - LONG_AT_SHAPE_TICKS, ri)
-    ri[SEARCHER, R_SHAPE_SINCE] = TICK - LONG_AT_SHAPE_TICKS + 1
+    ri[SEARCHER, R_SHAPE_SINCE] = TICK - round(at_shape_s * TICKS_PER_S)
     ri[SEARCHER, R_GROWTH] = growth
     nb[SEARCHER, 0, NB_ID] = 20
     nb[SEARCHER, 0, NB_STATE] = State.STABLE
@@ -79,14 +82,35 @@ def test_a_failed_confirmation_after_damage_starts_a_plunge() -> None:
     assert ri[SEARCHER, R_PLUNGE_UNTIL] == TICK + 20 * TICKS_PER_S
 
 
-@pytest.mark.parametrize(("growth", "plunge_s"), [(0, 20.0), (1, 0.0)])
-def test_no_plunge_in_the_first_formation_or_with_the_option_off(
-    growth: int, plunge_s: float
+@pytest.mark.parametrize(("at_shape_s", "plunges"), [(790.0, False), (810.0, True)])
+def test_in_the_first_formation_a_searcher_plunges_after_first_plunge_after_s(
+    at_shape_s: float, plunges: bool
 ) -> None:
-    world = searcher(growth=growth, reading_mm=40.0, settling=True, plunge_s=plunge_s)
+    world = searcher(growth=0, reading_mm=40.0, settling=True, at_shape_s=at_shape_s)
+    step(*world)
+    assert world[3][SEARCHER, R_SUB] == SUB_FOLLOW
+    expected = TICK + 20 * TICKS_PER_S if plunges else 0
+    assert world[3][SEARCHER, R_PLUNGE_UNTIL] == expected
+
+
+@pytest.mark.parametrize(("growth", "plunge_s", "first_after_s"),
+                         [(0, 20.0, 0.0), (1, 0.0, 800.0), (0, 0.0, 800.0)])
+def test_no_plunge_with_the_options_off(
+    growth: int, plunge_s: float, first_after_s: float
+) -> None:
+    world = searcher(growth=growth, reading_mm=40.0, settling=True, plunge_s=plunge_s,
+                     first_after_s=first_after_s)
     step(*world)
     assert world[3][SEARCHER, R_SUB] == SUB_FOLLOW
     assert world[3][SEARCHER, R_PLUNGE_UNTIL] == 0
+
+
+def test_first_formations_plunge_except_on_targets_with_holes() -> None:
+    after = {shape: int(ETRun(RunConfig(shape=shape)).controller.ci[C_FIRST_PLUNGE])
+             for shape in ("starfish", "T", "O")}
+    assert after == {"starfish": 800 * TICKS_PER_S, "T": 800 * TICKS_PER_S, "O": 0}
+    off = ETRun(RunConfig(shape="starfish", et=ETParams(first_plunge_after_s=0.0)))
+    assert off.controller.ci[C_FIRST_PLUNGE] == 0
 
 
 def test_a_plunging_searcher_keeps_nearer_to_the_group() -> None:

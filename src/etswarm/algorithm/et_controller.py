@@ -41,7 +41,13 @@ from etswarm.algorithm.memory import (
     SLOT_WY,
     allocate,
 )
-from etswarm.algorithm.params import C_HOLE_WATCH, C_WAVE, NOMINAL_MOTION, ETParams
+from etswarm.algorithm.params import (
+    C_FIRST_PLUNGE,
+    C_HOLE_WATCH,
+    C_WAVE,
+    NOMINAL_MOTION,
+    ETParams,
+)
 from etswarm.algorithm.states import State
 from etswarm.algorithm.wave import HOPS_SHIFT, nn_of, seed_hops
 from etswarm.shapes.lattice import depths, enclosed_cells, neighbour_counts, sort_cells
@@ -199,7 +205,9 @@ class ETController:
         if len(enclosed_cells(cells)):
             # A ring's two fronts meet wherever they meet; waiting for the nearer sites
             # formed O less often (103 of 200 runs against 118): the hole watch rules there.
+            # Plunging into a ring's inner rim formed O 26 of 60 times against 31.
             self.ci[C_WAVE] = 0
+            self.ci[C_FIRST_PLUNGE] = 0
         if self.ci[C_WAVE] > 0:
             hops = seed_hops(cells, np.asarray(layout.seed_tags))
             self.gene_nn[0, cells[:, 0] - self.x0, cells[:, 1] - self.y0] += (

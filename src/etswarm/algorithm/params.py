@@ -67,7 +67,8 @@ C_HOLE_WATCH = 50  # ticks a searcher seen in a hole keeps others from walling i
 C_TICKS_PER_S = 51  # control ticks per simulated second
 C_WAVE = 52  # ticks at the shape a searcher keeps to the wave from the seeds (0: off)
 C_TICKS_PLUNGE = 53  # after damage, a searcher that cannot take its site plunges this long (0: off)
-N_CI = 54
+C_FIRST_PLUNGE = 54  # first formation: ticks at the shape before a searcher may plunge (0: never)
+N_CI = 55
 
 #: Values of ``ci[C_RIGHT_OF_WAY]``: never, always, or in the first formation alone (a
 #: thin shape's, ``thin_right_of_way``).
@@ -169,6 +170,7 @@ NON_NEGATIVE: frozenset[str] = frozenset(
         "regrowth_two_neighbour_widen_s", "capture_mouth_mm", "capture_offset_mm",
         "regrowth_capture_offset_mm", "remembered_neighbours_s", "regrowth_unpinch_mm",
         "isolated_rejoin_s", "hole_watch_s", "wave_s", "regrowth_plunge_s",
+        "first_plunge_after_s",
     }
 )
 #: Parameters that may take any sign.
@@ -304,8 +306,16 @@ class ETParams:
     #: instead of d - ``regrowth_dive_mm`` for this long: a notch's mouth pinched to
     #: 71 mm kept a searcher at 37 mm from every robot 18 mm outside its last site for
     #: 1.5 h (starfish split y=mid seed 1). Over the 18 damage cases, seeds 0-39: 630 of
-    #: 704 runs re-formed against 626 with 0 (never), first formations unchanged.
+    #: 704 runs re-formed against 626 with 0 (never). 0: no plunge, after damage or in
+    #: the first formation.
     regrowth_plunge_s: float = 20.0
+    #: In the first formation a searcher plunges too (for ``regrowth_plunge_s``) once it
+    #: has been this long at the shape (twice ``widen_s``: its dive is complete). Starfish
+    #: formed 132 of 140 runs (seeds 0-79, 200-259) against 127; the regeneration suite
+    #: (seeds 0-39, whose first formations change too) re-formed 650 of 720 runs against
+    #: 630. Off for targets with holes, as the wave is (``O``: 26 of 60 against 31).
+    #: 0: never in the first formation.
+    first_plunge_after_s: float = 800.0
     closing_speed_mm_s: float = 5.0
     clearance_mm: float = 38.0
     balance_tol_mm: float = 8.0
@@ -689,6 +699,8 @@ class ETParams:
         # A thin shape closes no ring round a free middle: the wave only slows it.
         ci[C_WAVE] = ticks(self.wave_s) if self.wave_s > 0 and not thin else 0
         ci[C_TICKS_PLUNGE] = ticks(self.regrowth_plunge_s) if self.regrowth_plunge_s > 0 else 0
+        first_plunge = self.first_plunge_after_s
+        ci[C_FIRST_PLUNGE] = ticks(first_plunge) if first_plunge > 0 else 0
         cf = np.zeros(N_CF, dtype=np.float64)
         cf[F_SPACING] = self.spacing_mm
         cf[F_PAIR_TOL] = self.pair_tol_mm

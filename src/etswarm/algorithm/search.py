@@ -91,6 +91,7 @@ from etswarm.algorithm.params import (
     C_AVOID_FOREIGN,
     C_CREEP,
     C_FILL_LOOKAHEAD,
+    C_FIRST_PLUNGE,
     C_HOLE_MEMORY,
     C_LOST_BEACON,
     C_LOST_HOMING,
@@ -893,14 +894,14 @@ def search_rule(  # type: ignore[no-untyped-def]
             ri[i, R_SUB] = SUB_FOLLOW
             ri[i, R_SUB_SINCE] = tick
             ri[i, R_COOLDOWN] = tick + ci[C_TICKS_COOLDOWN]
-            if (
-                not first
-                and ci[C_TICKS_PLUNGE] > 0
-                and at_shape >= widening_ticks(ri[i, R_GROWTH], cf)
-            ):
-                # Long at a regrowing shape, it stood near a site and could not take it:
-                # it may be in a notch's mouth, short of the site; for a while it
-                # edge-follows nearer, into the notch.
+            if first:
+                may_plunge = ci[C_FIRST_PLUNGE] > 0 and at_shape >= ci[C_FIRST_PLUNGE]
+            else:
+                may_plunge = at_shape >= widening_ticks(ri[i, R_GROWTH], cf)
+            if may_plunge and ci[C_TICKS_PLUNGE] > 0:
+                # Long at the shape, it stood near a site and could not take it: it may
+                # be in a notch's mouth, short of the site; for a while it edge-follows
+                # nearer, into the notch.
                 ri[i, R_PLUNGE_UNTIL] = tick + ci[C_TICKS_PLUNGE]
         return
 
