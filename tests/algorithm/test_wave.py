@@ -17,6 +17,7 @@ from etswarm.measures.formation import duplicate_tags, min_pair_distance
 from etswarm.shapes.lattice import neighbour_counts
 
 from .test_site_memory import ORIGIN, hexagon_gene, memory_of, ring
+from .traced import SESSION_47_FORMATION
 
 SEEDS = np.array([[0, 0], [1, 0], [0, 1]])
 
@@ -88,11 +89,12 @@ def test_the_packed_gene_keeps_nn() -> None:
 
 
 def test_a_disc_whose_rim_closed_round_free_sites_forms_with_the_wave() -> None:
-    # disc seed 213 without the wave ends 4 h with free sites walled in (Jaccard 0.945);
-    # with it the disc fills from the seeds outwards and forms.
+    # disc seed 213 (traced before the first-formation plunge) without the wave ends 4 h
+    # with free sites walled in (Jaccard 0.945); with it the disc fills from the seeds
+    # outwards and forms.
     def run(wave_s: float) -> ETRun:
         r = ETRun(RunConfig(shape="disc", seed=213, max_time_s=14400,
-                            et=ETParams(wave_s=wave_s)))
+                            et=ETParams(wave_s=wave_s, **SESSION_47_FORMATION)))
         r.run()
         return r
 

@@ -1,10 +1,14 @@
 """Settings that traced scenario tests pin, so that a later change of a default does not
 move their seeds off the situation they were written for."""
 
+#: Until session 48 a searcher plunged (edge-followed nearer the placed robots) only after
+#: damage; first formations traced before then form as described with this.
+SESSION_47_FORMATION = {"first_plunge_after_s": 0.0}
+
 #: Until session 45 a searcher took the first free site it could locate, the waves from
 #: the seeds were an option; first formations traced before then form as described with
 #: this (and so do the shapes their damage then cuts).
-SESSION_44_FORMATION = {"wave_s": 0.0}
+SESSION_44_FORMATION = {"wave_s": 0.0, **SESSION_47_FORMATION}
 
 #: Until session 35 a thin shape (cells at most two steps from its outside) formed with
 #: the compact shapes' settle retries and release clear time; first formations of `T`,
