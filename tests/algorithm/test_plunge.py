@@ -30,6 +30,7 @@ from etswarm.algorithm.params import C_FIRST_PLUNGE, ETParams
 from etswarm.algorithm.run import ETRun, RunConfig
 from etswarm.algorithm.search import PLUNGE_AIM_MM, begin_search, search_rule
 from etswarm.algorithm.states import State
+from etswarm.measures.formation import duplicate_tags, min_pair_distance
 from etswarm.sim.world import FORWARD, LEFT, RIGHT
 
 TICKS_PER_S = 31
@@ -147,3 +148,25 @@ def test_the_starfish_half_reaches_the_site_in_its_notch() -> None:
     for component in summary["components"]:
         assert component["formed"] and component["jaccard"] == 1.0
         assert component["census_count"] == component["robots"]
+
+
+@pytest.mark.parametrize("seed", [11, 18])
+def test_starfish_first_formations_that_form_only_with_the_first_formation_plunge(
+    seed: int,
+) -> None:
+    # Session 48, starfish seeds 0-19: 18 formed either way, but these two only with the
+    # plunge (seeds 0 and 4 went the other way); without it they end 4 h with two and six
+    # free sites.
+    def run(first_after_s: float) -> ETRun:
+        r = ETRun(RunConfig(shape="starfish", seed=seed, max_time_s=4 * 3600,
+                            et=ETParams(first_plunge_after_s=first_after_s)))
+        r.run()
+        return r
+
+    assert not run(0.0).summary()["formed"]
+    plunging = run(800.0)
+    summary = plunging.summary()
+    assert summary["formed"] and summary["jaccard"] == 1.0, summary["states"]
+    placed = plunging.controller.states >= State.INACTIVE
+    assert duplicate_tags(plunging.controller.tags, placed) == []
+    assert min_pair_distance(plunging.world.pos, plunging.world.present) > 2 * 16.5 - 1.0
