@@ -48,7 +48,7 @@ from etswarm.algorithm.params import (
     NOMINAL_MOTION,
     ETParams,
 )
-from etswarm.algorithm.states import State
+from etswarm.algorithm.states import PLACED_STATES, State
 from etswarm.algorithm.wave import HOPS_SHIFT, nn_of, seed_hops
 from etswarm.shapes.lattice import depths, enclosed_cells, neighbour_counts, sort_cells
 
@@ -224,6 +224,15 @@ class ETController:
     def tags(self) -> np.ndarray:
         """(N, 2) int64 tags (meaningful where the robot is placed)."""
         return self.ri[:, [R_TAG_X, R_TAG_Y]]
+
+    @property
+    def holds_site(self) -> np.ndarray:
+        """(N,) bool: the robot stands on the site of its tag. That is a robot in a placed
+        state (``PLACED_STATES``) that took or kept a site (``R_HAS_TAG``): a searcher an
+        election flood pulls into Danger keeps its candidate in its tag fields, but holds
+        no site."""
+        placed = np.isin(self.ri[:, R_STATE], [int(s) for s in PLACED_STATES])
+        return placed & (self.ri[:, R_HAS_TAG] == 1)
 
     def pending_requests(self) -> np.ndarray:
         """IDs of Leaders waiting for their scaled target (R_REQUEST == 1)."""

@@ -26,7 +26,7 @@ from etswarm.algorithm.memory import (
 )
 from etswarm.algorithm.offsets import FINE_PER_MM
 from etswarm.algorithm.run import ETRun
-from etswarm.algorithm.states import PLACED_STATES, STATE_NAMES
+from etswarm.algorithm.states import STATE_NAMES
 from etswarm.damage.apply import split_shift_mm
 from etswarm.viewer.scene import Scene
 
@@ -55,7 +55,7 @@ class ETLive:
     def scene(self) -> Scene:
         r = self.run
         states = r.controller.states.astype(np.uint8)
-        has_tag = np.isin(states, [int(s) for s in PLACED_STATES])
+        has_tag = r.controller.holds_site
         return Scene(
             pos=r.world.pos.copy(),
             heading=r.world.heading.copy(),

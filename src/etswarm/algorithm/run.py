@@ -37,7 +37,7 @@ from etswarm.algorithm.params import ETParams
 from etswarm.algorithm.placement import RemnantView, choose_placement, holds_a_pair
 from etswarm.algorithm.regeneration import turns_coded
 from etswarm.algorithm.silent import enclosed_tags, silent_tags
-from etswarm.algorithm.states import PLACED_STATES, STATE_NAMES, State
+from etswarm.algorithm.states import STATE_NAMES, State
 from etswarm.damage import DamageSpec, apply_damage, parse_damage
 from etswarm.errors import EtswarmError
 from etswarm.measures.formation import (
@@ -476,7 +476,7 @@ class ETRun:
     def _masks(self) -> tuple[np.ndarray, np.ndarray]:
         states = self.controller.states
         live = self.world.present & self.world.alive
-        holds = live & np.isin(states, [int(s) for s in PLACED_STATES])
+        holds = live & self.controller.holds_site
         stable = live & (states == State.STABLE)
         return holds, stable
 

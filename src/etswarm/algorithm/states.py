@@ -25,7 +25,9 @@ class State(IntEnum):
 #: Display names, indexed by code.
 STATE_NAMES: tuple[str, ...] = tuple(s.name.capitalize() for s in State)
 
-#: States in which a robot holds a lattice tag.
+#: States in which a robot may hold a lattice tag: every robot in Inactive to Stable does;
+#: one in Danger or Leader does if it held one when the election reached it
+#: (``ETController.holds_site``).
 PLACED_STATES: frozenset[State] = frozenset(
     {State.INACTIVE, State.ACTIVE, State.QUASI, State.STABLE, State.DANGER, State.LEADER}
 )
