@@ -94,7 +94,7 @@ class ETLive:
                     "age_s": f"{(tick - row[NB_LAST]) / r.ticks_per_s:.1f}",
                 }
             )
-        placed = state >= 2
+        placed = bool(r.controller.holds_site[i])
         searching = state == 1
         lost_since = int(ri[i, R_LOST_SINCE])
         from_home = np.hypot(ri[i, R_ODO_X] - ri[i, R_HOME_X], ri[i, R_ODO_Y] - ri[i, R_HOME_Y])
