@@ -11,13 +11,13 @@ import pytest
 from etswarm.algorithm.memory import R_HAS_TAG, R_STATE, R_TAG_X, R_TAG_Y
 from etswarm.algorithm.run import ETRun, RunConfig
 from etswarm.algorithm.states import State
+from etswarm.shapes.shape import load_shape
 
 
 @pytest.fixture(scope="module")
 def formed_triangle() -> ETRun:
     """A triangle formed with one robot to spare, which stays Queued."""
-    run = ETRun(RunConfig(shape="triangle", seed=0, max_time_s=3 * 3600))
-    cells = int(run.controller.slot_cells[0].shape[0])
+    cells = load_shape("triangle").n_cells
     run = ETRun(RunConfig(shape="triangle", seed=0, robots=cells + 1, max_time_s=3 * 3600))
     summary = run.run()
     assert summary["formed"] and summary["jaccard"] == 1.0

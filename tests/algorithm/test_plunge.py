@@ -167,6 +167,5 @@ def test_starfish_first_formations_that_form_only_with_the_first_formation_plung
     plunging = run(800.0)
     summary = plunging.summary()
     assert summary["formed"] and summary["jaccard"] == 1.0, summary["states"]
-    placed = plunging.controller.states >= State.INACTIVE
-    assert duplicate_tags(plunging.controller.tags, placed) == []
+    assert duplicate_tags(plunging.controller.tags, plunging.controller.holds_site) == []
     assert min_pair_distance(plunging.world.pos, plunging.world.present) > 2 * 16.5 - 1.0
