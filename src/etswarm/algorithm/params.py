@@ -68,7 +68,8 @@ C_TICKS_PER_S = 51  # control ticks per simulated second
 C_WAVE = 52  # ticks at the shape a searcher keeps to the wave from the seeds (0: off)
 C_TICKS_PLUNGE = 53  # after damage, a searcher that cannot take its site plunges this long (0: off)
 C_FIRST_PLUNGE = 54  # first formation: ticks at the shape before a searcher may plunge (0: never)
-N_CI = 55
+C_TICKS_LOST_ESCAPE = 55  # a lost searcher blocked by a foreign robot follows it this long
+N_CI = 56
 
 #: Values of ``ci[C_RIGHT_OF_WAY]``: never, always, or in the first formation alone (a
 #: thin shape's, ``thin_right_of_way``).
@@ -170,7 +171,7 @@ NON_NEGATIVE: frozenset[str] = frozenset(
         "regrowth_two_neighbour_widen_s", "capture_mouth_mm", "capture_offset_mm",
         "regrowth_capture_offset_mm", "remembered_neighbours_s", "regrowth_unpinch_mm",
         "isolated_rejoin_s", "hole_watch_s", "wave_s", "regrowth_plunge_s",
-        "first_plunge_after_s",
+        "first_plunge_after_s", "lost_escape_s",
     }
 )
 #: Parameters that may take any sign.
@@ -472,6 +473,14 @@ class ETParams:
     #: away from where it left the repository: the robots it heard there have since left
     #: and the shape lies on along the way it was going (``homing.AHEAD_SHARE``).
     lost_homing: str = "on"
+    #: A lost searcher that had to turn away from a placed robot of another shape (an
+    #: obstacle, ``foreign_robots``) edge-follows that shape's robots for this long (s),
+    #: steering by them alone, before it steers for its spiral round home again. Its
+    #: turns are pivots about a leg, which bring the body back where it started: when the
+    #: spiral's course led into a sibling remnant, it turned away, turned back to the
+    #: course and met the same robots, for hours (dumbbell split y=mid seed 12, session
+    #: 50). Going round the sibling, it passes the gap towards its own remnant. 0: off.
+    lost_escape_s: float = 120.0
     #: "on": a Stable robot whose count falls short only by neighbours it knew of through
     #: their neighbours' reports (it did not hear them itself at its last complete count)
     #: waits four Danger timeouts before it starts an election; "off": one, whatever it
@@ -699,6 +708,7 @@ class ETParams:
         # A thin shape closes no ring round a free middle: the wave only slows it.
         ci[C_WAVE] = ticks(self.wave_s) if self.wave_s > 0 and not thin else 0
         ci[C_TICKS_PLUNGE] = ticks(self.regrowth_plunge_s) if self.regrowth_plunge_s > 0 else 0
+        ci[C_TICKS_LOST_ESCAPE] = ticks(self.lost_escape_s) if self.lost_escape_s > 0 else 0
         first_plunge = self.first_plunge_after_s
         ci[C_FIRST_PLUNGE] = ticks(first_plunge) if first_plunge > 0 else 0
         cf = np.zeros(N_CF, dtype=np.float64)

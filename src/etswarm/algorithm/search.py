@@ -48,6 +48,7 @@ from etswarm.algorithm.memory import (
     R_COOLDOWN,
     R_COUNT,
     R_CREEP_UNTIL,
+    R_ESCAPE_UNTIL,
     R_FROM_ID,
     R_GROWTH,
     R_HAS_TAG,
@@ -108,6 +109,7 @@ from etswarm.algorithm.params import (
     C_SETTLE_RETRIES,
     C_TICKS_COOLDOWN,
     C_TICKS_HOVER,
+    C_TICKS_LOST_ESCAPE,
     C_TICKS_MOVE_FRESH,
     C_TICKS_NB_FRESH,
     C_TICKS_PLUNGE,
@@ -232,6 +234,7 @@ def begin_search(i, tick, ri):  # type: ignore[no-untyped-def]
     ri[i, R_REF_MOVED] = 0
     ri[i, R_PINCH_REFUSED] = 0
     ri[i, R_PLUNGE_UNTIL] = 0
+    ri[i, R_ESCAPE_UNTIL] = 0
     ri[i, R_LEFT] = 0
     forget_recent_references(i, ri)
 
@@ -731,6 +734,7 @@ def search_rule(  # type: ignore[no-untyped-def]
     beacon_est = FAR
     beacon_slot = -1
     foreign_est = FAR
+    foreign_slot = -1
     look_for_beacon = ci[C_LOST_BEACON] == 1
     avoid_foreign = ci[C_AVOID_FOREIGN] == 1
     right_of_way = ci[C_RIGHT_OF_WAY] == RIGHT_OF_WAY_ALWAYS or (
@@ -755,7 +759,9 @@ def search_rule(  # type: ignore[no-untyped-def]
                 lower_slot = m
         elif is_placed(st):
             if avoid_foreign and foreign(i, m, nb, gene_flag, ci):
-                foreign_est = min(foreign_est, est)  # not its shape: an obstacle
+                if est < foreign_est:  # not its shape: an obstacle
+                    foreign_est = est
+                    foreign_slot = m
             elif est < placed_est:
                 placed_est = est
                 placed_slot = m
@@ -795,6 +801,12 @@ def search_rule(  # type: ignore[no-untyped-def]
         if beacon_slot >= 0:
             beacon = True
             reading = nb_dist[i, beacon_slot]
+        elif foreign_slot >= 0 and tick < ri[i, R_ESCAPE_UNTIL]:
+            # Blocked by another shape on its way home (``lost_escape_s``): it edge-follows
+            # that shape's robots as a beacon, steering only, so it goes round them
+            # instead of pivoting into them again and again.
+            beacon = True
+            reading = nb_dist[i, foreign_slot]
 
     if not lost:
         ri[i, R_LOST_SINCE] = 0
@@ -1003,6 +1015,9 @@ def search_rule(  # type: ignore[no-untyped-def]
             return
         motor[i] = away
         ri[i, R_TOWARD_SINCE] = tick
+        if lost and not beacon and foreign_est < clearance and ci[C_TICKS_LOST_ESCAPE] > 0:
+            # its way home runs into another shape: follow that shape's edge a while
+            ri[i, R_ESCAPE_UNTIL] = tick + ci[C_TICKS_LOST_ESCAPE]
     elif along_repository and reading <= aim + STRIDE_BAND_MM:
         motor[i] = FORWARD
     elif beacon:
