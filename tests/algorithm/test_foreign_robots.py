@@ -14,7 +14,25 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from etswarm.algorithm.memory import NB_ID, NB_LAST, NB_STATE, NB_TX, NB_TY
+from etswarm.algorithm.controller import file_held
+from etswarm.algorithm.memory import (
+    NB_EPOCH,
+    NB_ID,
+    NB_LAST,
+    NB_OTHER,
+    NB_STATE,
+    NB_TX,
+    NB_TY,
+    R_EPOCH,
+    R_TSLOT,
+    SLOT_FIELDS,
+    SLOT_N,
+    SLOT_TX,
+    SLOT_TY,
+    SLOT_USED,
+    allocate,
+)
+from etswarm.algorithm.messages import EPOCH_SHIFT, MSG_HELD, target_signature
 from etswarm.algorithm.params import ETParams
 from etswarm.algorithm.run import ETRun, RunConfig
 from etswarm.algorithm.search import NO_SITE, find_site, foreign, window_centre
@@ -107,3 +125,45 @@ def test_a_robot_of_another_shape_does_not_veto_a_site() -> None:
     # contradicted it on every pass; the searcher went round for 2 h.
     assert site_beside_a_foreign_robot(ETParams(foreign_robots="follow"))[0] is False
     assert site_beside_a_foreign_robot(ETParams()) == (True, 1, 1)
+
+
+def sibling_held_message(epoch: int, signature: int, sent_epoch: int | None = None):  # type: ignore[no-untyped-def]
+    """Robot 0 (working for target slot 1 of ``epoch``) has robot 5, a Stable robot on
+    (1, 1), in its table and receives robot 5's held-sites message of ``sent_epoch``
+    (``epoch`` by default) naming the target ``signature``; returns robot 0's table after
+    ``controller.file_held``."""
+    sent_epoch = epoch if sent_epoch is None else sent_epoch
+    ri, nb, nb_dist = allocate(1)
+    slot_info = np.zeros((2, SLOT_FIELDS), dtype=np.int64)
+    slot_info[1, [SLOT_N, SLOT_TX, SLOT_TY, SLOT_USED]] = (12, 0, 0, 1)
+    ri[0, R_TSLOT] = 1
+    ri[0, R_EPOCH] = epoch
+    nb[0, 0, [NB_ID, NB_STATE, NB_TX, NB_TY, NB_EPOCH]] = (5, State.STABLE, 1, 1, epoch)
+    in_type = np.array([[MSG_HELD | ((sent_epoch & 31) << EPOCH_SHIFT)]], dtype=np.uint8)
+    in_data = np.zeros((1, 1, 9), dtype=np.uint8)
+    in_data[0, 0, 0] = 5
+    in_data[0, 0, 3] = signature
+    held = np.zeros((1, 4, 4), dtype=np.uint8)
+    file_held(0, 0, 100, ri, in_type, in_data, np.array([[45.0]]), nb, nb_dist, held,
+              slot_info)
+    return nb
+
+
+def test_a_robot_that_gossips_another_target_of_the_epoch_is_foreign_whatever_its_tag() -> None:
+    # Session 50, `H` `split y=mid` seed 5: far-half robots held tags that are sites of a
+    # leg's scaled `H` too; a searcher of the leg took them for its own shape.
+    own = target_signature(12, 0, 0)
+    gene_flag = np.ones((7, 7), dtype=np.int64)  # every tag is a site of the target
+    ci, _ = ETParams().pack(31, gene_x0=GENE_X0, gene_y0=GENE_X0)
+    ci_off, _ = ETParams(signed_foreign="off").pack(31, gene_x0=GENE_X0, gene_y0=GENE_X0)
+    nb = sibling_held_message(3, (own + 1) % 256)
+    assert nb[0, 0, NB_OTHER] == 4
+    assert foreign(0, 0, nb, gene_flag, ci)
+    assert not foreign(0, 0, nb, gene_flag, ci_off)
+    nb[0, 0, NB_EPOCH] = 4  # it has since adopted a newer target: the mark is stale
+    assert not foreign(0, 0, nb, gene_flag, ci)
+    # Its own target's signature, or a message of another epoch, marks nothing.
+    assert sibling_held_message(3, own)[0, 0, NB_OTHER] == 0
+    nb = sibling_held_message(3, (own + 1) % 256, sent_epoch=2)
+    assert nb[0, 0, NB_OTHER] == 0
+    assert not foreign(0, 0, nb, gene_flag, ci)

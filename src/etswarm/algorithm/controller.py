@@ -41,6 +41,7 @@ from etswarm.algorithm.memory import (
     NB_ID,
     NB_LAST,
     NB_MASK,
+    NB_OTHER,
     NB_OX,
     NB_OY,
     NB_PREV,
@@ -183,6 +184,7 @@ def table_slot(i, sender, nb):  # type: ignore[no-untyped-def]
     nb[i, row, NB_RELEASED] = 0
     nb[i, row, NB_MASK] = 0
     nb[i, row, NB_ANCHORED] = 0
+    nb[i, row, NB_OTHER] = 0
     return -row - 1
 
 
@@ -261,7 +263,14 @@ def file_held(i, k, tick, ri, in_type, in_data, in_dist, nb, nb_dist, held, slot
     for i's target (``site_memory.merge_held``), its distance as a reading of the sender
     (``note_reading``, whose answer it returns). Kept out of line: the loop over the
     inbox of every robot stays small."""
-    merge_held(i, k, ri, in_type, in_data, held, slot_signature(ri[i, R_TSLOT], slot_info))
+    signature = slot_signature(ri[i, R_TSLOT], slot_info)
+    merge_held(i, k, ri, in_type, in_data, held, signature)
+    m = table_row(i, get_u16(in_data[i, k], 0), nb)
+    if m >= 0 and (np.int64(in_type[i, k]) >> EPOCH_SHIFT) == (ri[i, R_EPOCH] & 31):
+        # Sent for robot i's epoch: a placed robot of another target of it belongs to a
+        # sibling remnant, whatever its tag (``search.foreign``).
+        other = np.int64(in_data[i, k, 3]) != signature
+        nb[i, m, NB_OTHER] = ri[i, R_EPOCH] + 1 if other else 0
     return note_reading(i, k, tick, in_data, in_dist, nb, nb_dist)
 
 

@@ -263,7 +263,11 @@ NB_ANCHORED = 17  # byte 6 of a Queued or searching robot's status (see ``messag
 NB_READINGS = 18  # readings averaged into nb_dist (both robots still since the first)
 NB_OX = 19  # a placed robot's offset from its site's centre (``offsets``), x and y
 NB_OY = 20
-NB_FIELDS = 21
+#: A placed robot found working for another target of the receiver's own epoch (a sibling
+#: remnant's): its epoch + 1 when its held-sites message carried another target's
+#: signature in that epoch (``controller.file_held``); 0 when not known so.
+NB_OTHER = 21
+NB_FIELDS = 22
 
 SLOT_N = 0  # cells of the target
 SLOT_LIMIT = 1  # robots the repository releases for it

@@ -9,7 +9,7 @@ held, and it could never be filled. Robots carry no mark of their remnant, and s
 remnants share the epoch.
 
 What a placed robot can see is a robot of its own epoch, right beside it, whose tag is no
-site of its own target (``search.foreign``). Once it has heard such a robot within
+site of its own target (``search.off_target``). Once it has heard such a robot within
 ``MERGE_NEAR_MM`` for ``MERGE_AFTER_S`` without a break, it starts an election for the next
 epoch. The robots of both remnants hear it (both are at that epoch) and join, so the two
 elect one Leader, count themselves together and regrow one shape. The first formation has
@@ -33,7 +33,7 @@ from etswarm.algorithm.memory import (
 )
 from etswarm.algorithm.params import C_MERGE, C_TICKS_NB_FRESH
 from etswarm.algorithm.regeneration import start_election
-from etswarm.algorithm.search import foreign
+from etswarm.algorithm.search import off_target
 
 #: A robot of another remnant this near (mm, a reading) is in contact: two bodies a lattice
 #: step apart read about 40 mm; across a free site, 80.
@@ -59,7 +59,7 @@ def contact_rule(i, tick, ri, nb, nb_dist, gene_flag, ci):  # type: ignore[no-un
             continue
         if nb[i, m, NB_EPOCH] != epoch or tick - nb[i, m, NB_LAST] > fresh:
             continue
-        if nb_dist[i, m] <= MERGE_NEAR_MM and foreign(i, m, nb, gene_flag, ci):
+        if nb_dist[i, m] <= MERGE_NEAR_MM and off_target(i, m, nb, gene_flag, ci):
             touching = True
             break
     if not touching:

@@ -69,7 +69,8 @@ C_WAVE = 52  # ticks at the shape a searcher keeps to the wave from the seeds (0
 C_TICKS_PLUNGE = 53  # after damage, a searcher that cannot take its site plunges this long (0: off)
 C_FIRST_PLUNGE = 54  # first formation: ticks at the shape before a searcher may plunge (0: never)
 C_TICKS_LOST_ESCAPE = 55  # a lost searcher blocked by a foreign robot follows it this long
-N_CI = 56
+C_SIGNED_FOREIGN = 56  # 1: a robot that gossips another target of its epoch is foreign
+N_CI = 57
 
 #: Values of ``ci[C_RIGHT_OF_WAY]``: never, always, or in the first formation alone (a
 #: thin shape's, ``thin_right_of_way``).
@@ -481,6 +482,13 @@ class ETParams:
     #: course and met the same robots, for hours (dumbbell split y=mid seed 12, session
     #: 50). Going round the sibling, it passes the gap towards its own remnant. 0: off.
     lost_escape_s: float = 120.0
+    #: "on": a placed robot whose held-sites message carried the signature of another
+    #: target of the epoch it works for (a sibling remnant's scaled shape) is foreign to a
+    #: searcher whatever its tag. "off": only a robot whose tag is no site of the
+    #: searcher's target is (session 23's test). Siblings' targets can share tags: on `H`
+    #: split y=mid seed 5 a leg's searcher took robots of the far half for its own shape
+    #: and made its home there (session 50).
+    signed_foreign: str = "on"
     #: "on": a Stable robot whose count falls short only by neighbours it knew of through
     #: their neighbours' reports (it did not hear them itself at its last complete count)
     #: waits four Danger timeouts before it starts an election; "off": one, whatever it
@@ -592,7 +600,7 @@ class ETParams:
                 "creep", "second_ring", "hole_memory", "hole_flag", "fill_lookahead",
                 "queue_stride",
                 "silent_sites", "lost_beacon", "lost_yield", "right_of_way", "thin_right_of_way",
-                "site_offsets", "report_patience", "merge_remnants",
+                "site_offsets", "report_patience", "merge_remnants", "signed_foreign",
             ):
                 if value not in ("on", "off"):
                     raise EtswarmError(f"{f.name} must be 'on' or 'off', got {value!r}")
@@ -678,6 +686,7 @@ class ETParams:
         ci[C_SILENT_SITES] = 1 if self.silent_sites == "on" else 0
         ci[C_LOST_BEACON] = 1 if self.lost_beacon == "on" else 0
         ci[C_LOST_YIELD] = 1 if self.lost_yield == "on" else 0
+        ci[C_SIGNED_FOREIGN] = 1 if self.signed_foreign == "on" else 0
         if self.right_of_way == "on":
             ci[C_RIGHT_OF_WAY] = RIGHT_OF_WAY_ALWAYS
         elif thin and self.thin_right_of_way == "on":

@@ -35,9 +35,11 @@ from etswarm.algorithm.kernel_util import (
 )
 from etswarm.algorithm.memory import (
     NB_ANCHORED,
+    NB_EPOCH,
     NB_ID,
     NB_LAST,
     NB_MASK,
+    NB_OTHER,
     NB_STATE,
     NB_TS,
     NB_TX,
@@ -107,6 +109,7 @@ from etswarm.algorithm.params import (
     C_RIGHT_OF_WAY,
     C_SECOND_RING,
     C_SETTLE_RETRIES,
+    C_SIGNED_FOREIGN,
     C_TICKS_COOLDOWN,
     C_TICKS_HOVER,
     C_TICKS_LOST_ESCAPE,
@@ -375,11 +378,23 @@ def in_window(dist_a, dist_b, aim, cf, tol_scale):  # type: ignore[no-untyped-de
 
 
 @njit(inline="always")
-def foreign(i, m, nb, gene_flag, ci):  # type: ignore[no-untyped-def]
+def off_target(i, m, nb, gene_flag, ci):  # type: ignore[no-untyped-def]
     """Placed robot m of robot i's table holds a tag that is no site of i's target: it
     belongs to another remnant's shape (a sibling cut from the same lattice) or has not
     adopted the target yet. Every placed robot of the target holds one of its sites."""
     return gene_at(gene_flag, ci, nb[i, m, NB_TX], nb[i, m, NB_TY]) != 1
+
+
+@njit(inline="always")
+def foreign(i, m, nb, gene_flag, ci):  # type: ignore[no-untyped-def]
+    """Placed robot m of robot i's table is not of i's shape, to a searcher: its tag is no
+    site of i's target (``off_target``) or, with ``ci[C_SIGNED_FOREIGN]``, its held-sites
+    message named another target of the epoch it still works for (``NB_OTHER``):
+    siblings' scaled targets may share tags."""
+    if off_target(i, m, nb, gene_flag, ci):
+        return True
+    other = nb[i, m, NB_OTHER]
+    return ci[C_SIGNED_FOREIGN] == 1 and other > 0 and other == nb[i, m, NB_EPOCH] + 1
 
 
 @njit(inline="always")
