@@ -240,7 +240,13 @@ def average_reading(i, slot, last_mean, last_count, most, nb, nb_dist):  # type:
 def note_reading(i, k, tick, in_data, in_dist, nb, nb_dist):  # type: ignore[no-untyped-def]
     """Take message k of robot i's inbox (one that carries no status) as a fresh distance
     reading of its sender when the sender has a row in i's table; True if it had one."""
-    m = table_row(i, get_u16(in_data[i, k], 0), nb)
+    return reading_of_row(i, table_row(i, get_u16(in_data[i, k], 0), nb), k, tick, in_dist,
+                          nb, nb_dist)
+
+
+@njit(inline="always")
+def reading_of_row(i, m, k, tick, in_dist, nb, nb_dist):  # type: ignore[no-untyped-def]
+    """``note_reading`` for the sender's row m of robot i's table (-1: none)."""
     if m < 0:
         return False
     nb[i, m, NB_LAST] = tick
@@ -260,9 +266,10 @@ def slot_signature(slot, slot_info):  # type: ignore[no-untyped-def]
 @njit
 def file_held(i, k, tick, ri, in_type, in_data, in_dist, nb, nb_dist, held, slot_info):  # type: ignore[no-untyped-def]
     """File held-sites message k of robot i's inbox: its chunk into i's memory when it is
-    for i's target (``site_memory.merge_held``), its distance as a reading of the sender
-    (``note_reading``, whose answer it returns). Kept out of line: the loop over the
-    inbox of every robot stays small."""
+    for i's target (``site_memory.merge_held``); when it is for i's epoch, whether its
+    sender works for another target of it (``NB_OTHER``); its distance as a reading of
+    the sender (``note_reading``, whose answer it returns). Kept out of line: the loop
+    over the inbox of every robot stays small."""
     signature = slot_signature(ri[i, R_TSLOT], slot_info)
     merge_held(i, k, ri, in_type, in_data, held, signature)
     m = table_row(i, get_u16(in_data[i, k], 0), nb)
@@ -271,7 +278,7 @@ def file_held(i, k, tick, ri, in_type, in_data, in_dist, nb, nb_dist, held, slot
         # sibling remnant, whatever its tag (``search.foreign``).
         other = np.int64(in_data[i, k, 3]) != signature
         nb[i, m, NB_OTHER] = ri[i, R_EPOCH] + 1 if other else 0
-    return note_reading(i, k, tick, in_data, in_dist, nb, nb_dist)
+    return reading_of_row(i, m, k, tick, in_dist, nb, nb_dist)
 
 
 @njit(inline="always")
