@@ -25,9 +25,14 @@ SESSION_26_FORMATION = {"two_neighbour_widen_s": 0.0, **SESSION_34_FORMATION}
 #: with these.
 SESSION_19_WIDENING = {"widen_s": 1200.0, "capture_pinch_refusals": 2, **SESSION_26_FORMATION}
 
+#: Until session 50 a lost searcher pivoted straight back into a sibling remnant's robots,
+#: and only a robot whose tag is no site of the searcher's target was foreign to it;
+#: regrowths traced before then run as described with this.
+SESSION_49_REGROWTH = {"lost_escape_s": 0.0, "signed_foreign": "off"}
+
 #: Until session 34 a Leader kept the scaled shape in the original's orientation;
 #: regrowths traced before then place and branch as described with this.
-SESSION_33_PLACEMENT = {"placement_turns": "off"}
+SESSION_33_PLACEMENT = {"placement_turns": "off", **SESSION_49_REGROWTH}
 
 #: Until session 32 a Leader's placement counted cells off the old shape like any other;
 #: regrowths traced before then place and branch as described with this.
