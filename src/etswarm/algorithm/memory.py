@@ -229,8 +229,8 @@ R_WATCH_T1 = R_WATCH_ID1 + 1
 #: A searcher of a regenerated target that could not confirm its site edge-follows at
 #: ``search.PLUNGE_AIM_MM`` until this tick (``ETParams.regrowth_plunge_s``).
 R_PLUNGE_UNTIL = R_WATCH_T1 + 1
-#: A lost searcher that turned away from another shape's robot drives straight on until
-#: this tick (``ETParams.lost_escape_s``).
+#: A lost searcher that had to turn away from another shape's robot edge-follows that
+#: shape's robots until this tick (``ETParams.lost_escape_s``).
 R_ESCAPE_UNTIL = R_PLUNGE_UNTIL + 1
 R_FIELDS = R_ESCAPE_UNTIL + 1
 
