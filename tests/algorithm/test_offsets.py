@@ -117,7 +117,7 @@ def test_refinement_averages_noisy_readings_down():
         k = tick % len(tags)  # one fresh reading a tick, round the six neighbours
         nb[0, k, NB_LAST] = tick
         nb_dist[0, k] = math.dist(at, centre(tags[k])) + 2.0 * rng.standard_normal()
-        refine_offset(0, tick, nb, nb_dist, ri, D)
+        refine_offset(0, tick, nb, nb_dist, ri, ci, D)
         track.append(ri[0, [R_OFF_X, R_OFF_Y]] / FINE_PER_MM)
     late = np.array(track[300:])
     # one reading is N(0, 2 mm); the estimate settles to a fraction of that, without bias

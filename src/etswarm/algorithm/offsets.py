@@ -45,13 +45,14 @@ from etswarm.algorithm.memory import (
     NB_TX,
     NB_TY,
     R_OFF_REFINE,
+    R_OFF_SINCE,
     R_OFF_TICK,
     R_OFF_X,
     R_OFF_Y,
     R_TAG_X,
     R_TAG_Y,
 )
-from etswarm.algorithm.params import C_OFFSETS, F_OFFSET_TRUST, F_SPACING
+from etswarm.algorithm.params import C_OFFSETS, C_TICKS_REFINE, F_OFFSET_TRUST, F_SPACING
 
 #: Offsets are sent in units of this many mm (int8: +-63.5 mm) ...
 OFFSET_UNIT_MM = 0.5
@@ -196,6 +197,7 @@ def estimate_offset(i, tick, cx, cy, since, nb, nb_dist, ri, ci, d):  # type: ig
         return
     ri[i, R_OFF_REFINE] = 1
     ri[i, R_OFF_TICK] = tick
+    ri[i, R_OFF_SINCE] = tick
     px0 = site_x(cx, cy, d)
     py0 = site_y(cy, d)
     ok, px, py = locate(i, since, px0, py0, nb, nb_dist, d)
@@ -206,10 +208,14 @@ def estimate_offset(i, tick, cx, cy, since, nb, nb_dist, ri, ci, d):  # type: ig
 
 
 @njit
-def refine_offset(i, tick, nb, nb_dist, ri, d):  # type: ignore[no-untyped-def]
+def refine_offset(i, tick, nb, nb_dist, ri, ci, d):  # type: ignore[no-untyped-def]
     """Placed robot i, still refining (R_OFF_REFINE), moves its estimate a little towards
-    agreeing with every reading of a placed robot taken since its last refinement."""
+    agreeing with every reading of a placed robot taken since its last refinement. With
+    ``refine_offset_s``, it stops for good that long after it began."""
     if ri[i, R_OFF_REFINE] == 0:
+        return
+    if ci[C_TICKS_REFINE] > 0 and tick - ri[i, R_OFF_SINCE] > ci[C_TICKS_REFINE]:
+        ri[i, R_OFF_REFINE] = 0
         return
     since = ri[i, R_OFF_TICK] + 1
     ri[i, R_OFF_TICK] = tick

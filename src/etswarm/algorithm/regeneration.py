@@ -79,6 +79,7 @@ from etswarm.algorithm.memory import (
     R_NEWSLOT,
     R_NN,
     R_OFF_REFINE,
+    R_OFF_SINCE,
     R_OFF_TICK,
     R_OFF_X,
     R_OFF_Y,
@@ -336,6 +337,7 @@ def restart_offset(i, tick, seed, ri, ci):  # type: ignore[no-untyped-def]
     refine = mode == REGROW_OFFSETS_RESET and not seed and ci[C_OFFSETS] == 1
     ri[i, R_OFF_REFINE] = 1 if refine else 0
     ri[i, R_OFF_TICK] = tick
+    ri[i, R_OFF_SINCE] = tick
 
 
 @njit
