@@ -71,7 +71,8 @@ C_FIRST_PLUNGE = 54  # first formation: ticks at the shape before a searcher may
 C_TICKS_LOST_ESCAPE = 55  # a lost searcher blocked by a foreign robot follows it this long
 C_SIGNED_FOREIGN = 56  # 1: a robot that gossips another target of its epoch is foreign
 C_TICKS_REFINE = 57  # a placed robot refines its offset this long after it took its site
-N_CI = 58
+C_OFFSET_LEAVE = 58  # an Active robot whose refined offset reaches this (mm) leaves its site
+N_CI = 59
 
 #: Values of ``ci[C_RIGHT_OF_WAY]``: never, always, or in the first formation alone (a
 #: thin shape's, ``thin_right_of_way``).
@@ -174,6 +175,7 @@ NON_NEGATIVE: frozenset[str] = frozenset(
         "regrowth_capture_offset_mm", "remembered_neighbours_s", "regrowth_unpinch_mm",
         "isolated_rejoin_s", "hole_watch_s", "wave_s", "regrowth_plunge_s",
         "first_plunge_after_s", "lost_escape_s", "refine_offset_s",
+        "offset_leave_mm",
     }
 )
 #: Parameters that may take any sign.
@@ -532,6 +534,12 @@ class ETParams:
     #: one another can slide together: on `T` kill random=0.1 seed 32 two neighbours'
     #: estimates grew to 80 mm while they stood within 10 mm of their sites (session 51).
     refine_offset_s: float = 0.0
+    #: An Active robot whose refined offset puts it this far (whole mm) or farther from its
+    #: site's centre gives the site up and searches for it again, as a robot pushed out
+    #: of range does (``rejoin``): there it blocks a neighbour site, or its estimate has
+    #: slid away with its neighbours' (``refine_offset_s``). Estimates past 35 mm were
+    #: found in 7 of 60 runs after damage, 6 of which did not re-form. 0: never.
+    offset_leave_mm: float = 0.0
     #: A searcher this long at the shape (s) in the first formation also gets its widened
     #: window at a site where it hears only two placed neighbours (a tip or an edge), not
     #: only at one with three or more; 0: never. First formations, 13 shapes, seeds 30-89:
@@ -758,6 +766,7 @@ class ETParams:
         ci[C_REGROW_PINCH_REFUSALS] = self.regrowth_pinch_refusals
         ci[C_REGROW_OFFSETS] = REGROWTH_OFFSETS.index(self.regrowth_offsets)
         ci[C_TICKS_REFINE] = ticks(self.refine_offset_s) if self.refine_offset_s > 0 else 0
+        ci[C_OFFSET_LEAVE] = round(self.offset_leave_mm)
         speed_mm_s, turn_deg_s, leg_deg, radius_mm = nominal_motion
         cf[F_ODO_STEP] = speed_mm_s / ticks_per_s
         cf[F_ODO_TURN] = math.radians(turn_deg_s) / ticks_per_s

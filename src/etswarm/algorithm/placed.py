@@ -57,7 +57,7 @@ from etswarm.algorithm.params import (
     F_SPACING,
 )
 from etswarm.algorithm.regeneration import start_election
-from etswarm.algorithm.rejoin import rejoin_if_alone, rejoin_if_cut_off
+from etswarm.algorithm.rejoin import leave_if_far, rejoin_if_alone, rejoin_if_cut_off
 from etswarm.algorithm.site_memory import is_held
 
 #: Inactive robots with no Active neighbour for this many evaluations become Active.
@@ -224,6 +224,8 @@ def placed_rule(i, tick, ri, nb, nb_dist, gene, ci, cf, held_i, ox, oy):  # type
             ri[i, R_QUASI_UNTIL] = tick + ci[C_TICKS_QUASI]
         elif rejoin_if_alone(i, tick, ri, nb, ci, held_i, ox, oy):
             return  # kept where no robot hears it: it searches for its site again
+        elif leave_if_far(i, tick, ri, ci, held_i, ox, oy):
+            return  # it stands, or believes it stands, most of the way to another site
     elif state == QUASI:
         if tick >= ri[i, R_QUASI_UNTIL]:
             set_state(i, ri, ACTIVE, tick)

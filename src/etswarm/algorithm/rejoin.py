@@ -32,12 +32,16 @@ from etswarm.algorithm.memory import (
     R_LEFT_X,
     R_LEFT_Y,
     R_MISSING,
+    R_OFF_REFINE,
+    R_OFF_X,
+    R_OFF_Y,
     R_RESUMED_AT,
     R_SEEN_FULL,
     R_TAG_X,
     R_TAG_Y,
 )
-from etswarm.algorithm.params import C_TICKS_NB_FRESH, C_TICKS_REJOIN
+from etswarm.algorithm.offsets import FINE_PER_MM
+from etswarm.algorithm.params import C_OFFSET_LEAVE, C_TICKS_NB_FRESH, C_TICKS_REJOIN
 from etswarm.algorithm.search import begin_search
 from etswarm.algorithm.site_memory import forget_left_site
 
@@ -71,6 +75,26 @@ def rejoin_if_alone(i, tick, ri, nb, ci, held_i, ox, oy):  # type: ignore[no-unt
     limit = ALONE_REJOINS * ci[C_TICKS_REJOIN]
     alone = not first_growth(i, ri) and not heard_anyone(i, tick, nb, ci[C_TICKS_NB_FRESH])
     if limit == 0 or not cut_off_for(i, tick, alone, limit, ri):
+        return False
+    leave_site(i, tick, ri, held_i, ox, oy)
+    return True
+
+
+@njit
+def leave_if_far(i, tick, ri, ci, held_i, ox, oy):  # type: ignore[no-untyped-def]
+    """Active robot i, this evaluation: when it still refines its offset (it took its site
+    by search) and the offset puts it ``C_OFFSET_LEAVE`` mm or farther from its site's
+    centre, it leaves the site and searches for it again (returns True). Traced on `T`
+    kill random=0.1: on seed 3 robot 1 took (-4, -5) 25 mm off by its own estimate and
+    was shoved 13 mm farther; on seed 32 the estimates of robots 14 and 10 slid together
+    to 80 mm while both stood within 10 mm of their sites. Either way the free site
+    next to them could not be taken."""
+    limit = ci[C_OFFSET_LEAVE]
+    if limit == 0 or ri[i, R_OFF_REFINE] == 0:
+        return False
+    fx = ri[i, R_OFF_X]
+    fy = ri[i, R_OFF_Y]
+    if fx * fx + fy * fy < (limit * FINE_PER_MM) ** 2:
         return False
     leave_site(i, tick, ri, held_i, ox, oy)
     return True
