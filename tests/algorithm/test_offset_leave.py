@@ -15,6 +15,7 @@ import pytest
 
 from etswarm.algorithm.memory import (
     R_FIELDS,
+    R_GROWTH,
     R_LEFT,
     R_LEFT_X,
     R_LEFT_Y,
@@ -35,10 +36,13 @@ from etswarm.errors import EtswarmError
 TAG = (2, 1)
 
 
-def active_robot(off_mm: tuple[float, float], refining: bool) -> tuple[np.ndarray, np.ndarray]:
-    """One Active robot on TAG with offset ``off_mm`` (x, y), and its memory of held sites
-    (tags 0..4 in both axes) with its own tag in it."""
+def active_robot(off_mm: tuple[float, float], refining: bool,
+                 regrowth: bool = True) -> tuple[np.ndarray, np.ndarray]:
+    """One Active robot on TAG with offset ``off_mm`` (x, y), of a regenerated target or
+    of the first formation, and its memory of held sites (tags 0..4 in both axes) with
+    its own tag in it."""
     ri = np.zeros((1, R_FIELDS), dtype=np.int64)
+    ri[0, R_GROWTH] = 1 if regrowth else 0
     ri[0, R_STATE] = State.ACTIVE
     ri[0, R_TAG_X], ri[0, R_TAG_Y] = TAG
     ri[0, R_OFF_X] = round(off_mm[0] * FINE_PER_MM)
@@ -58,15 +62,16 @@ def test_a_robot_whose_estimate_reaches_the_limit_leaves_its_site() -> None:
     assert held[TAG] == 0  # it alone counts its old site free
 
 
-def test_a_robot_nearer_its_site_or_not_refining_stays() -> None:
+def test_a_robot_nearer_its_site_not_refining_or_in_a_first_formation_stays() -> None:
     on, _ = ETParams(offset_leave_mm=35).pack(31, gene_x0=-5, gene_y0=-5)
     off, _ = ETParams(offset_leave_mm=0).pack(31, gene_x0=-5, gene_y0=-5)
-    for consts, off_mm, refining in (
-        (on, (-30.0, 17.5), True),  # 34.7 mm
-        (on, (60.0, 0.0), False),  # a seed, or kept through a regeneration: frozen
-        (off, (60.0, 0.0), True),
+    for consts, off_mm, refining, regrowth in (
+        (on, (-30.0, 17.5), True, True),  # 34.7 mm
+        (on, (60.0, 0.0), False, True),  # a seed, or kept through a regeneration: frozen
+        (on, (60.0, 0.0), True, False),  # the first formation
+        (off, (60.0, 0.0), True, True),
     ):
-        ri, held = active_robot(off_mm, refining)
+        ri, held = active_robot(off_mm, refining, regrowth)
         assert not leave_if_far(0, 1000, ri, consts, held, 0, 0)
         assert ri[0, R_STATE] == State.ACTIVE
         assert held[TAG] == 1
