@@ -168,19 +168,16 @@ R_EXT_GREW = R_EXT0 + EXTENT_FIELDS
 #: A placed robot's estimate of where it stands from its site's centre (``offsets``), in
 #: units of ``offsets.FINE_PER_MM`` along the gene frame's x and y; 1 while it still
 #: refines that estimate (from taking its site until it is Stable); the tick of the
-#: newest reading it refined by; the estimate it made when it took the site
-#: (``ETParams.refine_leash_mm``).
+#: newest reading it refined by.
 R_OFF_X = R_EXT_GREW + 1
 R_OFF_Y = R_OFF_X + 1
 R_OFF_REFINE = R_OFF_Y + 1
 R_OFF_TICK = R_OFF_REFINE + 1
-R_OFF_X0 = R_OFF_TICK + 1
-R_OFF_Y0 = R_OFF_X0 + 1
 #: A searcher's odometry (``homing``): its pose as it reckons it from its own motor
 #: commands, in a frame of its own (position x, y and heading), and home, where it last
 #: heard a stationary robot (x, y); the length of its path so far, and that length when
 #: it last lost the group.
-R_ODO_X = R_OFF_Y0 + 1
+R_ODO_X = R_OFF_TICK + 1
 R_ODO_Y = R_ODO_X + 1
 R_ODO_H = R_ODO_Y + 1
 R_HOME_X = R_ODO_H + 1

@@ -35,7 +35,7 @@ import math
 
 from numba import njit
 
-from etswarm.algorithm.kernel_util import HALF_SQRT3, first_growth, is_placed, lattice_distance
+from etswarm.algorithm.kernel_util import HALF_SQRT3, is_placed, lattice_distance
 from etswarm.algorithm.memory import (
     NB_ID,
     NB_LAST,
@@ -47,13 +47,11 @@ from etswarm.algorithm.memory import (
     R_OFF_REFINE,
     R_OFF_TICK,
     R_OFF_X,
-    R_OFF_X0,
     R_OFF_Y,
-    R_OFF_Y0,
     R_TAG_X,
     R_TAG_Y,
 )
-from etswarm.algorithm.params import C_OFFSETS, C_REFINE_LEASH, F_OFFSET_TRUST, F_SPACING
+from etswarm.algorithm.params import C_OFFSETS, F_OFFSET_TRUST, F_SPACING
 
 #: Offsets are sent in units of this many mm (int8: +-63.5 mm) ...
 OFFSET_UNIT_MM = 0.5
@@ -193,8 +191,6 @@ def estimate_offset(i, tick, cx, cy, since, nb, nb_dist, ri, ci, d):  # type: ig
     It goes on refining it (``refine_offset``) while not Stable."""
     ri[i, R_OFF_X] = 0
     ri[i, R_OFF_Y] = 0
-    ri[i, R_OFF_X0] = 0
-    ri[i, R_OFF_Y0] = 0
     ri[i, R_OFF_REFINE] = 0
     if ci[C_OFFSETS] == 0:
         return
@@ -207,16 +203,12 @@ def estimate_offset(i, tick, cx, cy, since, nb, nb_dist, ri, ci, d):  # type: ig
         return  # too few robots, or all in one line from it: refine from the centre
     ri[i, R_OFF_X] = round((px - px0) * FINE_PER_MM)
     ri[i, R_OFF_Y] = round((py - py0) * FINE_PER_MM)
-    ri[i, R_OFF_X0] = ri[i, R_OFF_X]
-    ri[i, R_OFF_Y0] = ri[i, R_OFF_Y]
 
 
 @njit
-def refine_offset(i, tick, nb, nb_dist, ri, ci, d):  # type: ignore[no-untyped-def]
+def refine_offset(i, tick, nb, nb_dist, ri, d):  # type: ignore[no-untyped-def]
     """Placed robot i, still refining (R_OFF_REFINE), moves its estimate a little towards
-    agreeing with every reading of a placed robot taken since its last refinement. With
-    ``refine_leash_mm``, a robot of a regenerated target keeps it within that distance of
-    the estimate it made when it took its site (R_OFF_X0, R_OFF_Y0)."""
+    agreeing with every reading of a placed robot taken since its last refinement."""
     if ri[i, R_OFF_REFINE] == 0:
         return
     since = ri[i, R_OFF_TICK] + 1
@@ -236,11 +228,3 @@ def refine_offset(i, tick, nb, nb_dist, ri, ci, d):  # type: ignore[no-untyped-d
         dy += step * uy
     ri[i, R_OFF_X] += round(dx * FINE_PER_MM)
     ri[i, R_OFF_Y] += round(dy * FINE_PER_MM)
-    leash = ci[C_REFINE_LEASH] * FINE_PER_MM
-    if leash > 0 and not first_growth(i, ri):
-        ex = ri[i, R_OFF_X] - ri[i, R_OFF_X0]
-        ey = ri[i, R_OFF_Y] - ri[i, R_OFF_Y0]
-        far = math.sqrt(ex * ex + ey * ey)
-        if far > leash:
-            ri[i, R_OFF_X] = ri[i, R_OFF_X0] + round(ex * leash / far)
-            ri[i, R_OFF_Y] = ri[i, R_OFF_Y0] + round(ey * leash / far)

@@ -70,9 +70,8 @@ C_TICKS_PLUNGE = 53  # after damage, a searcher that cannot take its site plunge
 C_FIRST_PLUNGE = 54  # first formation: ticks at the shape before a searcher may plunge (0: never)
 C_TICKS_LOST_ESCAPE = 55  # a lost searcher blocked by a foreign robot follows it this long
 C_SIGNED_FOREIGN = 56  # 1: a robot that gossips another target of its epoch is foreign
-C_REFINE_LEASH = 57  # after damage a refined offset keeps within this (mm) of the first estimate
-C_OFFSET_LEAVE = 58  # an Active robot whose refined offset reaches this (mm) leaves its site
-N_CI = 59
+C_OFFSET_LEAVE = 57  # an Active robot whose refined offset reaches this (mm) leaves its site
+N_CI = 58
 
 #: Values of ``ci[C_RIGHT_OF_WAY]``: never, always, or in the first formation alone (a
 #: thin shape's, ``thin_right_of_way``).
@@ -174,8 +173,7 @@ NON_NEGATIVE: frozenset[str] = frozenset(
         "regrowth_two_neighbour_widen_s", "capture_mouth_mm", "capture_offset_mm",
         "regrowth_capture_offset_mm", "remembered_neighbours_s", "regrowth_unpinch_mm",
         "isolated_rejoin_s", "hole_watch_s", "wave_s", "regrowth_plunge_s",
-        "first_plunge_after_s", "lost_escape_s", "refine_leash_mm",
-        "offset_leave_mm",
+        "first_plunge_after_s", "lost_escape_s", "offset_leave_mm",
     }
 )
 #: Parameters that may take any sign.
@@ -528,17 +526,10 @@ class ETParams:
     #: "keep" it; "reset" it to 0 and refine it again from its neighbours' readings
     #: until it is Stable; "zero": reset it to 0 and stop refining.
     regrowth_offsets: str = "keep"
-    #: After damage, a placed robot's refined offset stays within this many mm (whole) of
-    #: the estimate it made when it took its site; 0: no bound. Distances place robots
-    #: only relative to each other, so neighbours that refine from one another can slide
-    #: together: on `T` kill random=0.1 seed 32 two neighbours' estimates grew to 80 mm
-    #: while they stood within 10 mm of their sites, and on seed 36 a tip robot Active
-    #: for an hour went from 4 to 38 mm (session 51).
-    refine_leash_mm: float = 0.0
     #: After damage, an Active robot whose refined offset puts it this far (whole mm) or
     #: farther from its site's centre gives the site up and searches for it again, as a
     #: robot pushed out of range does (``rejoin``): there it blocks a neighbour site, or
-    #: its estimate has slid away with its neighbours' (``refine_leash_mm``). Estimates
+    #: its estimate has slid away with its neighbours'. Estimates
     #: past 35 mm were found in 7 of 60 runs after damage, 6 of which did not re-form.
     #: 0: never.
     offset_leave_mm: float = 0.0
@@ -767,7 +758,6 @@ class ETParams:
         ci[C_PINCH_REFUSALS] = self.capture_pinch_refusals
         ci[C_REGROW_PINCH_REFUSALS] = self.regrowth_pinch_refusals
         ci[C_REGROW_OFFSETS] = REGROWTH_OFFSETS.index(self.regrowth_offsets)
-        ci[C_REFINE_LEASH] = round(self.refine_leash_mm)
         ci[C_OFFSET_LEAVE] = round(self.offset_leave_mm)
         speed_mm_s, turn_deg_s, leg_deg, radius_mm = nominal_motion
         cf[F_ODO_STEP] = speed_mm_s / ticks_per_s

@@ -205,7 +205,7 @@ def placed_rule(i, tick, ri, nb, nb_dist, gene, ci, cf, held_i, ox, oy):  # type
     if state == STABLE:
         ri[i, R_OFF_REFINE] = 0  # its neighbours are all placed: it stands where it is
     else:
-        refine_offset(i, tick, nb, nb_dist, ri, ci, cf[F_SPACING])
+        refine_offset(i, tick, nb, nb_dist, ri, cf[F_SPACING])
 
     if state == INACTIVE:
         if witnessed_stable:

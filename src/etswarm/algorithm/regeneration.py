@@ -81,9 +81,7 @@ from etswarm.algorithm.memory import (
     R_OFF_REFINE,
     R_OFF_TICK,
     R_OFF_X,
-    R_OFF_X0,
     R_OFF_Y,
-    R_OFF_Y0,
     R_PARENT,
     R_PEND_EPOCH,
     R_PEND_N,
@@ -338,8 +336,6 @@ def restart_offset(i, tick, seed, ri, ci):  # type: ignore[no-untyped-def]
     refine = mode == REGROW_OFFSETS_RESET and not seed and ci[C_OFFSETS] == 1
     ri[i, R_OFF_REFINE] = 1 if refine else 0
     ri[i, R_OFF_TICK] = tick
-    ri[i, R_OFF_X0] = 0
-    ri[i, R_OFF_Y0] = 0
 
 
 @njit
