@@ -529,9 +529,8 @@ class ETParams:
     #: After damage, an Active robot whose refined offset puts it this far (whole mm) or
     #: farther from its site's centre gives the site up and searches for it again, as a
     #: robot pushed out of range does (``rejoin``): there it blocks a neighbour site, or
-    #: its estimate has slid away with its neighbours'. Estimates
-    #: past 35 mm were found in 7 of 60 runs after damage, 6 of which did not re-form.
-    #: 0: never.
+    #: its estimate has slid away with its neighbours'. Estimates past 35 mm were found
+    #: in 7 of 60 runs after damage, 6 of which did not re-form. 0: never.
     offset_leave_mm: float = 0.0
     #: A searcher this long at the shape (s) in the first formation also gets its widened
     #: window at a site where it hears only two placed neighbours (a tip or an edge), not
