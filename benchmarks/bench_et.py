@@ -278,6 +278,8 @@ def main() -> None:
                         help="SimParams.control_threads (speed, hash, formation)")
     parser.add_argument("--message-delay", type=int, default=0, choices=[0, 1],
                         help="SimParams.message_delay_ticks (speed, hash, formation)")
+    parser.add_argument("--portable-math", action="store_true",
+                        help="SimParams.portable_math (speed, hash, formation)")
     parser.add_argument("--jobs", type=int, default=1, help="worker processes (formation)")
     parser.add_argument(
         "--et", type=parse_option, action="append", default=[], metavar="NAME=VALUE",
@@ -291,7 +293,8 @@ def main() -> None:
     args = parser.parse_args()
     try:
         sim = SimParams(threads=args.threads, control_threads=args.control_threads,
-                        message_delay_ticks=args.message_delay)
+                        message_delay_ticks=args.message_delay,
+                        portable_math=args.portable_math)
     except EtswarmError as err:
         parser.error(str(err))
     if args.what == "speed":

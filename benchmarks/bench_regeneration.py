@@ -62,9 +62,11 @@ ISSUE5_CASES = (
 SUITES = {"default": CASES, "issue5": ISSUE5_CASES}
 
 
-def one_run(args: tuple[str, str, str, int, float, dict[str, str], int]) -> dict[str, Any]:
+def one_run(
+    args: tuple[str, str, str, int, float, dict[str, str], int, bool],
+) -> dict[str, Any]:
     """Run one case with one seed and census method; return its JSON summary."""
-    shape, damage, census, seed, max_time, et_options, delay = args
+    shape, damage, census, seed, max_time, et_options, delay, portable = args
     name, _, robots = shape.partition("/")
     config = RunConfig(
         shape=name,
@@ -76,7 +78,8 @@ def one_run(args: tuple[str, str, str, int, float, dict[str, str], int]) -> dict
         census=census,
         et=ETParams(**et_options),
     )
-    return ETRun(config, sim_params=SimParams(message_delay_ticks=delay)).run()
+    sim = SimParams(message_delay_ticks=delay, portable_math=portable)
+    return ETRun(config, sim_params=sim).run()
 
 
 HEADER = (
@@ -202,18 +205,23 @@ def main() -> None:
     )
     parser.add_argument("--message-delay", type=int, choices=(0, 1), default=0,
                         help="SimParams.message_delay_ticks of every run.")
+    parser.add_argument("--portable-math", action="store_true",
+                        help="SimParams.portable_math for every run (the same bits on every "
+                             "machine).")
     args = parser.parse_args()
     et_options = dict(args.et)
     methods = ("tree", "walk") if args.census == "both" else (args.census,)
     cases = args.case or list(SUITES[args.suite])
-    print(f"load average {os.getloadavg()}, message delay {args.message_delay}")
+    print(f"load average {os.getloadavg()}, message delay {args.message_delay}, "
+          f"portable maths {args.portable_math}")
     print(HEADER)
     seeds = range(args.first_seed, args.first_seed + args.seeds)
     limit = args.max_time + (args.regrow_time or 0.0)  # simulated s per run
     with ProcessPoolExecutor(max_workers=args.jobs) as pool:
         for shape, damage in cases:
             for census in methods:
-                work = [(shape, damage, census, seed, limit, et_options, args.message_delay)
+                work = [(shape, damage, census, seed, limit, et_options, args.message_delay,
+                         args.portable_math)
                         for seed in seeds]
                 runs = list(pool.map(one_run, work))
                 if args.out:

@@ -33,6 +33,7 @@ def test_toml_file_with_and_without_table(tmp_path: Path) -> None:
         ("tx_period = 2.5\n", r"tx_period .* expected an integer"),
         ("speed_mm_s = 'fast'\n", r"speed_mm_s .* expected a number"),
         ("loss = \n", r"invalid TOML"),
+        ("portable_math = 1\n", r"portable_math .* expected true or false, got 1"),
     ],
 )
 def test_bad_files_give_one_line_errors(tmp_path: Path, text: str, pattern: str) -> None:
@@ -52,3 +53,12 @@ def test_overrides_and_missing_file(tmp_path: Path) -> None:
         SimParams(comm_range_mm=-1)
     with pytest.raises(EtswarmError, match="not found"):
         SimParams.from_toml(tmp_path / "nope.toml")
+
+
+def test_portable_math_from_toml_and_in_the_header(tmp_path: Path) -> None:
+    f = tmp_path / "p.toml"
+    f.write_text("portable_math = true\n")
+    p = SimParams.from_toml(f)
+    assert p.portable_math is True and p.kernel_config().portable is True
+    assert p.to_dict()["portable_math"] is True
+    assert "portable_math" not in SimParams().to_dict()  # old headers stay as they were

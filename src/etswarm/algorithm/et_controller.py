@@ -45,6 +45,7 @@ from etswarm.algorithm.params import (
     C_FIRST_PLUNGE,
     C_HOLE_WATCH,
     C_WAVE,
+    F_PORTABLE_MATH,
     NOMINAL_MOTION,
     ETParams,
 )
@@ -80,9 +81,11 @@ class ETController:
         et: ETParams,
         ticks_per_s: int,
         nominal_motion: tuple[float, float, float, float] = NOMINAL_MOTION,
+        portable_math: bool = False,
     ):
         """``nominal_motion``: the robot model the searchers' odometry assumes (see
-        ``ETParams.pack``)."""
+        ``ETParams.pack``); ``portable_math``: their odometry and homing use
+        ``sim.fpmath`` (``SimParams.portable_math``)."""
         self.ri, self.nb, self.nb_dist = allocate(n_robots)
         # Per robot, the tick until which it sleeps unless it hears something new (0: awake;
         # see ``controller.et_part``). A host that edits a robot's memory must wake it.
@@ -106,6 +109,7 @@ class ETController:
             nominal_motion=nominal_motion, shape_depth=int(depths(target).max(initial=0)),
             shape_cells=len(target),
         )
+        self.cf[F_PORTABLE_MATH] = 1.0 if portable_math else 0.0
         # The hole watch costs every placed robot a look round each evaluation: it runs
         # only once a target with a hole has been stored (``add_target``).
         self.hole_watch_ticks = int(self.ci[C_HOLE_WATCH])

@@ -37,7 +37,14 @@ from etswarm.algorithm.memory import (
     R_ODO_X,
     R_ODO_Y,
 )
-from etswarm.algorithm.params import F_ODO_LEG, F_ODO_RADIUS, F_ODO_STEP, F_ODO_TURN
+from etswarm.algorithm.params import (
+    F_ODO_LEG,
+    F_ODO_RADIUS,
+    F_ODO_STEP,
+    F_ODO_TURN,
+    F_PORTABLE_MATH,
+)
+from etswarm.sim.fpmath import atan2_as, sin_cos_as
 
 #: Odometric positions are kept in units of 1 / this many mm ...
 ODO_PER_MM = 1024.0
@@ -101,17 +108,21 @@ def integrate(i, ri, command, cf):  # type: ignore[no-untyped-def]
     x = ri[i, R_ODO_X] / ODO_PER_MM
     y = ri[i, R_ODO_Y] / ODO_PER_MM
     h = ri[i, R_ODO_H] / ODO_PER_RAD
+    portable = cf[F_PORTABLE_MATH] > 0.0
     if command == FORWARD:
-        x += cf[F_ODO_STEP] * math.cos(h)
-        y += cf[F_ODO_STEP] * math.sin(h)
+        sh, ch = sin_cos_as(h, portable)
+        x += cf[F_ODO_STEP] * ch
+        y += cf[F_ODO_STEP] * sh
         travel = cf[F_ODO_STEP]
     else:
         sign = 1.0 if command == LEFT else -1.0
         leg = h + sign * cf[F_ODO_LEG]
         turn = sign * cf[F_ODO_TURN]
         r = cf[F_ODO_RADIUS]
-        x += r * (math.cos(leg) - math.cos(leg + turn))
-        y += r * (math.sin(leg) - math.sin(leg + turn))
+        s0, c0 = sin_cos_as(leg, portable)
+        s1, c1 = sin_cos_as(leg + turn, portable)
+        x += r * (c0 - c1)
+        y += r * (s0 - s1)
         h += turn
         travel = r * cf[F_ODO_TURN]
         if h > math.pi:
@@ -159,7 +170,7 @@ def spiral_path():  # type: ignore[no-untyped-def]
 
 
 @njit
-def homing_motion(i, ri, ahead):  # type: ignore[no-untyped-def]
+def homing_motion(i, ri, ahead, portable):  # type: ignore[no-untyped-def]
     """Motor command of lost robot i, circling home (with ``ahead``, a point moved on from
     home away from the odometric origin, ``AHEAD_SHARE``).
 
@@ -167,7 +178,8 @@ def homing_motion(i, ri, ahead):  # type: ignore[no-untyped-def]
     turned towards home (or away) by up to 90 degrees as its odometric distance from home
     exceeds (or falls short of) the radius by ``RING_BAND_MM``: from afar it heads
     straight home, then laps it on a widening spiral. Forward when the heading is within
-    ``AIM_TOLERANCE_RAD`` of that course, else a pivot towards it.
+    ``AIM_TOLERANCE_RAD`` of that course, else a pivot towards it. ``portable``: the
+    angle by ``sim.fpmath`` (``F_PORTABLE_MATH``).
     """
     dx = (ri[i, R_ODO_X] - ri[i, R_HOME_X]) / ODO_PER_MM
     dy = (ri[i, R_ODO_Y] - ri[i, R_HOME_Y]) / ODO_PER_MM
@@ -182,7 +194,7 @@ def homing_motion(i, ri, ahead):  # type: ignore[no-untyped-def]
             dx -= shift * hx / away
             dy -= shift * hy / away
     rho = math.hypot(dx, dy)
-    outward = math.atan2(dy, dx)
+    outward = atan2_as(dy, dx, portable)
     error = (rho - ring_radius(path)) / RING_BAND_MM
     inward = 0.5 * math.pi * max(-1.0, min(1.0, error))
     course = outward - 0.5 * math.pi - inward

@@ -22,6 +22,7 @@ from scipy.spatial import cKDTree
 
 from etswarm.errors import EtswarmError
 from etswarm.shapes.lattice import seed_triangles, tags_to_xy
+from etswarm.sim.fpmath import atan2, atan2_array, sin_cos
 
 LAYOUTS = ("queue", "cluster")
 
@@ -61,8 +62,20 @@ class Layout:
         return int(self.pos.shape[0])
 
 
-def _unit(angle: float) -> np.ndarray:
-    return np.array([np.cos(angle), np.sin(angle)])
+def _unit(angle: float, portable: bool) -> np.ndarray:
+    s, c = sin_cos(angle) if portable else (np.sin(angle), np.cos(angle))
+    return np.array([c, s])
+
+
+def arctan2(y, x, portable: bool):  # type: ignore[no-untyped-def]
+    """``np.arctan2(y, x)`` of floats or 1-D arrays, by :mod:`etswarm.sim.fpmath` when
+    ``portable``."""
+    if not portable:
+        return np.arctan2(y, x)
+    if np.ndim(y) == 0:
+        return atan2(float(y), float(x))
+    return atan2_array(np.ascontiguousarray(y, dtype=np.float64),
+                       np.ascontiguousarray(x, dtype=np.float64))
 
 
 def _queue_points(head: np.ndarray, u: np.ndarray, count: int) -> np.ndarray:
@@ -97,6 +110,7 @@ def plan_layout(
     layout: str = "queue",
     spacing_mm: float = 40.0,
     rng: np.random.Generator,
+    portable: bool = False,
 ) -> Layout:
     """Place ``n_robots`` robots (>= 3) to build ``cells`` ((P, 2) tags).
 
@@ -104,7 +118,8 @@ def plan_layout(
     be built and whose repository fits: every repository robot at least ``GAP_SPACINGS`` d
     from every target site and the
     repository's first robot within 1.8 d of a seed (so searching robots walk from the
-    repository straight onto the growing shape).
+    repository straight onto the growing shape). ``portable``: angles by
+    :mod:`etswarm.sim.fpmath` (``SimParams.portable_math``).
     """
     if layout not in LAYOUTS:
         raise EtswarmError(f"--layout must be one of {', '.join(LAYOUTS)}, got {layout!r}")
@@ -129,11 +144,11 @@ def plan_layout(
         seed_xy = tags_to_xy(seed_tags, d)
         s_centre = seed_xy.mean(axis=0)
         out = s_centre - centre
-        base = np.arctan2(out[1], out[0]) if np.hypot(*out) > 1e-9 else 0.0
+        base = arctan2(out[1], out[0], portable) if np.hypot(*out) > 1e-9 else 0.0
         for k in range(24):
             # Directions in order of closeness to "away from the shape's centre".
             step = (k + 1) // 2 * (1 if k % 2 else -1)
-            u = _unit(base + step * np.pi / 12)
+            u = _unit(base + step * np.pi / 12, portable)
             head = None
             for r in np.arange(1.0, 4.0, 0.05) * d:
                 p = s_centre + r * u
@@ -154,20 +169,22 @@ def plan_layout(
                 rep = _cluster_points(head, u, n_rep, keep_out)
                 if len(rep) < n_rep:
                     continue
-            return _assemble(rep, seed_xy, seed_tags)
+            return _assemble(rep, seed_xy, seed_tags, portable)
     raise EtswarmError(
         f"could not fit a {layout} of {n_rep} robots beside the shape; try --layout cluster"
     )
 
 
-def _assemble(rep: np.ndarray, seed_xy: np.ndarray, seed_tags: np.ndarray) -> Layout:
+def _assemble(
+    rep: np.ndarray, seed_xy: np.ndarray, seed_tags: np.ndarray, portable: bool
+) -> Layout:
     """Number the robots: repository farthest-first, then the three seeds."""
     s_centre = seed_xy.mean(axis=0)
     far = np.hypot(*(rep - s_centre[None, :]).T) if len(rep) else np.zeros(0)
     rep = rep[np.argsort(-far, kind="stable")]
     pos = np.vstack([rep, seed_xy]) if len(rep) else seed_xy.copy()
     rel = pos - s_centre[None, :]
-    heading = np.arctan2(rel[:, 1], rel[:, 0])
+    heading = arctan2(rel[:, 1], rel[:, 0], portable)
     n_rep = len(rep)
     seed_ids = np.arange(n_rep, n_rep + 3, dtype=np.int64)
     heading[seed_ids] = 0.0

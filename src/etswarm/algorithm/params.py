@@ -110,7 +110,8 @@ F_REGROW_TWO_WIDEN_TICKS = 26  # F_TWO_WIDEN_TICKS while a searcher works for a 
 F_CAPTURE_OFFSET = 27  # no capture from this far (mm) or more off the site's centre
 F_REGROW_CAPTURE_OFFSET = 28  # F_CAPTURE_OFFSET while a searcher works for a regenerated target
 F_PINCH_PATIENCE = 29  # ticks at the shape after which a searcher refuses no more pinching sites
-N_CF = 30
+F_PORTABLE_MATH = 30  # 1.0: odometry and homing use ``sim.fpmath`` (``SimParams.portable_math``)
+N_CF = 31
 
 #: The DESIGN section 2 robot: 7 mm/s, 13 deg/s, legs at 125.5 deg, radius 16.5 mm.
 NOMINAL_MOTION = (7.0, 13.0, 125.5, 16.5)

@@ -134,6 +134,7 @@ class ETRun:
             layout=config.layout,
             spacing_mm=config.et.spacing_mm,
             rng=stream(config.seed, "placement"),
+            portable=self.sim_params.portable_math,
         )
         if config.layout == "queue" and n - 3 > LONG_QUEUE_ROBOTS:
             queue_m = (n - 3) * REPOSITORY_SPACING_MM / 1000.0
@@ -149,6 +150,7 @@ class ETRun:
         self.controller = ETController(
             n, cells, config.et, sp.ticks_per_s,
             nominal_motion=(sp.speed_mm_s, sp.turn_rate_deg_s, sp.leg_angle_deg, sp.body_radius_mm),
+            portable_math=sp.portable_math,
         )
         self.controller.seed(self.layout)
         self.sim = Simulator(self.world, self.controller, self.sim_params, config.seed)
@@ -580,6 +582,9 @@ class ETRun:
             "threads": int(self.sim_params.threads),
             # and a message read one tick later changes every run from there on
             "message_delay_ticks": int(self.sim_params.message_delay_ticks),
+            # and the portable maths give other bits than the platform's (but the same
+            # on every machine)
+            "portable_math": bool(self.sim_params.portable_math),
             "damage": list(self.config.damage),
             "formed": self.formed_at_s is not None,
             "formation_time_s": self.formed_at_s,

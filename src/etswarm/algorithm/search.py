@@ -131,6 +131,7 @@ from etswarm.algorithm.params import (
     F_PAIR_AIM,
     F_PAIR_TOL,
     F_PINCH_PATIENCE,
+    F_PORTABLE_MATH,
     F_REGROW_CAPTURE_OFFSET,
     F_REGROW_TWO_WIDEN_TICKS,
     F_REGROW_WIDEN_TICKS,
@@ -1046,7 +1047,7 @@ def search_rule(  # type: ignore[no-untyped-def]
                 and first_growth(i, ri)
                 and ri[i, R_SHAPE_SINCE] == 0
             )
-            motor[i] = homing_motion(i, ri, ahead)
+            motor[i] = homing_motion(i, ri, ahead, cf[F_PORTABLE_MATH] > 0.0)
         else:
             motor[i] = lost_motion(tick, ri[i, R_LOST_SINCE] - 1)
     elif tick - ri[i, R_TOWARD_SINCE] > CIRCLING_TICKS and ri[i, R_REF_TREND] < 0:

@@ -91,13 +91,18 @@ from etswarm.algorithm.layout import LAYOUTS
               help="Ticks (0 or 1) between a broadcast and the control tick that reads it "
                    "(SimParams.message_delay_ticks). With 1, --control-threads also runs "
                    "the radio beside the control: faster, and other results than 0.")
+@click.option("--portable-math", is_flag=True, default=False,
+              help="Compute sines, cosines, arctangents, logarithms and normal draws with "
+                   "etswarm's own functions, so a seed gives the same run on every machine "
+                   "(SimParams.portable_math; other results than without it).")
 def run(shape: str, robots: int | None, seed: int, loss: float, noise: float, max_time: float,
         layout: str, release_interval: float | None, census: str, orbit: str, creep: bool,
         second_ring: bool, hole_memory: bool, pocket: bool, release_order: str,
         silent_sites: bool, queue_stride: bool, wave: bool, et_options: tuple[str, ...], fit: bool,
         damage: tuple[str, ...],
         out: Path | None, video: Path | None, fps: float, speedup: float, snapshots: bool,
-        as_json: bool, threads: int, control_threads: int | None, message_delay: int) -> None:
+        as_json: bool, threads: int, control_threads: int | None, message_delay: int,
+        portable_math: bool) -> None:
     """Grow SHAPE (a library name or a bitmap file) with the ET algorithm."""
     from etswarm.algorithm.params import ETParams, parse_et_option
     from etswarm.algorithm.run import ETRun, RunConfig
@@ -138,7 +143,8 @@ def run(shape: str, robots: int | None, seed: int, loss: float, noise: float, ma
                        max_time_s=max_time, layout=layout, fit=fit, damage=damage, et=et,
                        census=census)
     et_run = ETRun(config, sim_params=SimParams(threads=threads, control_threads=control_threads,
-                                                message_delay_ticks=message_delay))
+                                                message_delay_ticks=message_delay,
+                                                portable_math=portable_math))
     for note in et_run.notes:
         click.echo(f"etswarm: {note}", err=True)
     shots = None

@@ -28,6 +28,7 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
+from etswarm.sim.fpmath import sin_cos
 from etswarm.sim.motion import clamp_to_arena
 from etswarm.sim.neighbours import (
     G_CELL,
@@ -285,8 +286,7 @@ def push_apart(a, s, dx, dy, d2, xi, yi, xs, ys, still_a, still_s, contact, stil
         uy = dy / d
     else:  # coincident centres: a fixed direction per pair
         ang = 2.399963229728653 * ((a + 1) * (s + 1) % 1024)
-        ux = np.cos(ang)
-        uy = np.sin(ang)
+        uy, ux = sin_cos(ang)  # the same bits everywhere (``fpmath``)
     # a robot standing on its legs slides less than a vibrating one
     share_j = 0.5
     if still_a != still_s:

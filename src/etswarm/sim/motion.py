@@ -20,6 +20,7 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
+from etswarm.sim.fpmath import normal_as, sin_cos_as
 from etswarm.sim.neighbours import (
     G_CELL,
     G_DRIFT,
@@ -63,8 +64,7 @@ def move_phase(cfg, grid, pos, heading, motor, alive, present, speed, turn_rate,
     dt = cfg.dt
     r = cfg.radius
     leg = cfg.leg_angle
-    cos_leg = np.cos(leg)
-    sin_leg = np.sin(leg)
+    sin_leg, cos_leg = sin_cos_as(leg, cfg.portable)
     walls = cfg.arena > 0.0
     two_pi = 2.0 * np.pi
     sxb, slot, sref = grid.sxb, grid.slot, grid.sref
@@ -85,8 +85,7 @@ def move_phase(cfg, grid, pos, heading, motor, alive, present, speed, turn_rate,
         h = heading[i]
         if trig[i, 0] != h:
             trig[i, 0] = h
-            trig[i, 1] = np.cos(h)
-            trig[i, 2] = np.sin(h)
+            trig[i, 2], trig[i, 1] = sin_cos_as(h, cfg.portable)
         ch = trig[i, 1]
         sh = trig[i, 2]
         # forward and turning are both computed and one is selected (which one is
@@ -95,12 +94,11 @@ def move_phase(cfg, grid, pos, heading, motor, alive, present, speed, turn_rate,
         fwd = m == 1
         step = speed[i] * dt
         if fwd and cfg.speed_noise > 0.0:
-            step *= 1.0 + cfg.speed_noise * rng.standard_normal()
+            step *= 1.0 + cfg.speed_noise * normal_as(rng, cfg.portable)
         rate = turn_rate[i]
         if trig[i, 3] != rate:
             trig[i, 3] = rate
-            trig[i, 4] = np.cos(rate * dt)
-            trig[i, 5] = np.sin(rate * dt)
+            trig[i, 5], trig[i, 4] = sin_cos_as(rate * dt, cfg.portable)
         cw = m == 3  # clockwise about the right leg, else counter-clockwise about the left
         cd = trig[i, 4]
         sd = -trig[i, 5] if cw else trig[i, 5]
@@ -123,9 +121,8 @@ def move_phase(cfg, grid, pos, heading, motor, alive, present, speed, turn_rate,
         ch = ch if fwd else ch_t
         sh = sh if fwd else sh_t
         if cfg.heading_noise > 0.0:
-            h_new += cfg.heading_noise * rng.standard_normal()
-            ch = np.cos(h_new)
-            sh = np.sin(h_new)
+            h_new += cfg.heading_noise * normal_as(rng, cfg.portable)
+            sh, ch = sin_cos_as(h_new, cfg.portable)
         if h_new > np.pi:
             h_new -= two_pi
         elif h_new <= -np.pi:

@@ -69,6 +69,7 @@ import numpy as np
 from numba import njit
 
 from etswarm.sim.collide import gather_overlaps, place_pushed, push_apart
+from etswarm.sim.fpmath import log_as, sin_cos_as
 from etswarm.sim.motion import PREFETCH_AHEAD, clamp_to_arena
 from etswarm.sim.neighbours import (
     G_CELL,
@@ -232,11 +233,12 @@ def hash_unit(key, tick, a, b):
 
 
 @njit(cache=True, inline="always")
-def hash_normal(key, tick, a, b_first, b_second):
-    """Standard normal draw (Box-Muller) from two hashed uniforms."""
+def hash_normal(key, tick, a, b_first, b_second, portable):
+    """Standard normal draw (Box-Muller) from two hashed uniforms (``portable``: with
+    ``fpmath``'s functions)."""
     u1 = hash_unit(key, tick, a, b_first)
     u2 = hash_unit(key, tick, a, b_second)
-    return np.sqrt(-2.0 * np.log(u1)) * np.cos(2.0 * np.pi * u2)
+    return np.sqrt(-2.0 * log_as(u1, portable)) * sin_cos_as(2.0 * np.pi * u2, portable)[1]
 
 
 @njit(cache=True)
@@ -316,14 +318,15 @@ def _in_range(x, y, start, sxb, ox, oy, inv, nx, ny, reach, r2, cand_s, cand_d2)
 
 
 @njit(cache=True, inline="always")
-def _heard(i, j, d2, tick, key, loss, noise):
+def _heard(i, j, d2, tick, key, loss, noise, portable):
     """The distance (mm) receiver j measures to sender i at squared distance d2, or -1.0
     when the copy is lost (hashed draws, see module doc)."""
     if loss > 0.0 and hash_unit(key, tick, i, j * 8 + SALT_LOSS) <= loss:
         return -1.0
     d = np.sqrt(d2)
     if noise > 0.0:
-        d += noise * hash_normal(key, tick, i, j * 8 + SALT_NOISE_A, j * 8 + SALT_NOISE_B)
+        d += noise * hash_normal(key, tick, i, j * 8 + SALT_NOISE_A, j * 8 + SALT_NOISE_B,
+                                 portable)
         if d < 0.0:
             d = 0.0
     return d
@@ -383,7 +386,7 @@ def _radio_one_thread(tick, cfg, grid, pos, alive, present, tx_phase, out_on, ou
             j = sidx[cand_s[q]]
             if j == i or not alive[j]:
                 continue
-            d = _heard(i, j, cand_d2[q], tick, key, cfg.loss, cfg.dist_noise)
+            d = _heard(i, j, cand_d2[q], tick, key, cfg.loss, cfg.dist_noise, cfg.portable)
             if d < 0.0:
                 lost += 1
                 continue
@@ -452,7 +455,7 @@ def _radio_list(slo, shi, p, tick, cfg, grid, alive, present, tx_phase, out_on, 
             j = sidx[cand_s[c]]
             if j == i or not alive[j]:
                 continue
-            d = _heard(i, j, cand_d2[c], tick, key, loss, noise)
+            d = _heard(i, j, cand_d2[c], tick, key, loss, noise, cfg.portable)
             if d < 0.0:
                 lost += 1
                 continue
@@ -612,8 +615,7 @@ def _move_part(lo, hi, tick, cfg, grid, pos, heading, motor, alive, present, spe
     dt = cfg.dt
     r = cfg.radius
     leg = cfg.leg_angle
-    cos_leg = np.cos(leg)
-    sin_leg = np.sin(leg)
+    sin_leg, cos_leg = sin_cos_as(leg, cfg.portable)
     walls = cfg.arena > 0.0
     two_pi = 2.0 * np.pi
     sxb, sref = grid.sxb, grid.sref
@@ -641,8 +643,7 @@ def _move_part(lo, hi, tick, cfg, grid, pos, heading, motor, alive, present, spe
         h = heading[i]
         if trig[i, 0] != h:
             trig[i, 0] = h
-            trig[i, 1] = np.cos(h)
-            trig[i, 2] = np.sin(h)
+            trig[i, 2], trig[i, 1] = sin_cos_as(h, cfg.portable)
         ch = trig[i, 1]
         sh = trig[i, 2]
         # forward and turning are both computed and one is selected (which one is
@@ -652,12 +653,11 @@ def _move_part(lo, hi, tick, cfg, grid, pos, heading, motor, alive, present, spe
         step = speed[i] * dt
         if fwd and cfg.speed_noise > 0.0:
             step *= 1.0 + cfg.speed_noise * hash_normal(key, tick, i, SALT_SPEED_A,
-                                                        SALT_SPEED_B)
+                                                        SALT_SPEED_B, cfg.portable)
         rate = turn_rate[i]
         if trig[i, 3] != rate:
             trig[i, 3] = rate
-            trig[i, 4] = np.cos(rate * dt)
-            trig[i, 5] = np.sin(rate * dt)
+            trig[i, 5], trig[i, 4] = sin_cos_as(rate * dt, cfg.portable)
         cw = m == 3  # clockwise about the right leg, else counter-clockwise about the left
         cd = trig[i, 4]
         sd = -trig[i, 5] if cw else trig[i, 5]
@@ -680,9 +680,9 @@ def _move_part(lo, hi, tick, cfg, grid, pos, heading, motor, alive, present, spe
         ch = ch if fwd else ch_t
         sh = sh if fwd else sh_t
         if cfg.heading_noise > 0.0:
-            h_new += cfg.heading_noise * hash_normal(key, tick, i, SALT_HEAD_A, SALT_HEAD_B)
-            ch = np.cos(h_new)
-            sh = np.sin(h_new)
+            h_new += cfg.heading_noise * hash_normal(key, tick, i, SALT_HEAD_A, SALT_HEAD_B,
+                                                      cfg.portable)
+            sh, ch = sin_cos_as(h_new, cfg.portable)
         if h_new > np.pi:
             h_new -= two_pi
         elif h_new <= -np.pi:

@@ -68,6 +68,7 @@ class KernelConfig(NamedTuple):
     slop: float
     still_share: float
     msg_delay: int
+    portable: bool
 
 
 @dataclass(frozen=True)
@@ -107,6 +108,10 @@ class SimParams:
     during its previous iteration. With 1 the split loop (``control_threads``) delivers
     a tick's messages on one thread while the others run the controller, and the results
     do not depend on the thread count either. Not with ``threads`` > 1.
+    ``portable_math``: compute sines, cosines, arctangents, logarithms and normal draws
+    with :mod:`etswarm.sim.fpmath`, which gives the same bits on every machine, instead
+    of the platform's maths library, whose code (and last bits) glibc picks by CPU. A seed
+    then gives the same run on any machine; its runs differ from the default's.
     """
 
     ticks_per_s: int = 31
@@ -130,6 +135,7 @@ class SimParams:
     threads: int = 1
     control_threads: int = 1
     message_delay_ticks: int = 0
+    portable_math: bool = False
     source: str = field(default="", compare=False, repr=False)
 
     def __post_init__(self) -> None:
@@ -139,6 +145,10 @@ class SimParams:
             if f.name == "source":
                 continue
             value = getattr(self, f.name)
+            if f.name == "portable_math":
+                if not isinstance(value, bool):
+                    raise EtswarmError(f"{bad} expected true or false, got {value!r}")
+                continue
             want_int = f.type in (int, "int")
             if isinstance(value, bool) or not isinstance(value, int | float):
                 raise EtswarmError(f"{bad} expected a number, got {value!r}")
@@ -181,6 +191,7 @@ class SimParams:
             slop=self.push_slop_mm,
             still_share=self.still_push_share,
             msg_delay=self.message_delay_ticks,
+            portable=self.portable_math,
         )
 
     def with_overrides(self, **overrides: Any) -> SimParams:
@@ -194,14 +205,15 @@ class SimParams:
         return dataclasses.replace(self, **given)
 
     def to_dict(self) -> dict[str, Any]:
-        """The parameters as a plain dict (for headers and final-state JSON); ``threads``
-        and ``message_delay_ticks`` only when they are not at their defaults (they change
-        results, but files of earlier runs stay as they were), ``control_threads`` never
-        (it changes only the speed)."""
+        """The parameters as a plain dict (for headers and final-state JSON); ``threads``,
+        ``message_delay_ticks`` and ``portable_math`` only when they are not at their
+        defaults (they change results, but files of earlier runs stay as they were),
+        ``control_threads`` never (it changes only the speed)."""
         return {f.name: getattr(self, f.name) for f in fields(self)
                 if f.name not in ("source", "control_threads")
                 and not (f.name == "threads" and self.threads == 1)
-                and not (f.name == "message_delay_ticks" and self.message_delay_ticks == 0)}
+                and not (f.name == "message_delay_ticks" and self.message_delay_ticks == 0)
+                and not (f.name == "portable_math" and not self.portable_math)}
 
     @classmethod
     def from_mapping(cls, values: dict[str, Any], source: str = "") -> SimParams:

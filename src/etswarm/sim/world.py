@@ -12,6 +12,7 @@ import numpy as np
 
 from etswarm.errors import EtswarmError
 from etswarm.seeding import stream
+from etswarm.sim.fpmath import normal_array
 from etswarm.sim.params import SimParams
 
 #: Motor codes (World.motor).
@@ -128,8 +129,8 @@ class World:
         """(Re)draw speed, turn rate and broadcast phase of every robot (see from_positions)."""
         n = self.n
         motion = stream(seed, "motion").spawn(1)[0]
-        speed_f = 1.0 + params.speed_spread * motion.standard_normal(n)
-        turn_f = 1.0 + params.turn_rate_spread * motion.standard_normal(n)
+        speed_f = 1.0 + params.speed_spread * normals(motion, n, params.portable_math)
+        turn_f = 1.0 + params.turn_rate_spread * normals(motion, n, params.portable_math)
         self.speed[:] = params.speed_mm_s * np.clip(speed_f, 0.1, 1.9)
         self.turn_rate[:] = np.deg2rad(params.turn_rate_deg_s) * np.clip(turn_f, 0.1, 1.9)
         radio = stream(seed, "radio").spawn(1)[0]
@@ -185,3 +186,9 @@ class World:
     def counter_dict(self) -> dict[str, int]:
         """The running counters by name."""
         return {name: int(v) for name, v in zip(COUNTER_NAMES, self.counters, strict=True)}
+
+
+def normals(rng: np.random.Generator, n: int, portable: bool) -> np.ndarray:
+    """``n`` standard normal draws ((n,) float64): by ``fpmath.normal_array`` when
+    ``portable`` (the same bits on every machine), else numpy's."""
+    return normal_array(rng, n) if portable else rng.standard_normal(n)
