@@ -98,11 +98,11 @@ def shape_path(name: str, tmp: Path) -> str:
 
 def speed(
     seconds: float, sim: SimParams, shapes: tuple[str, ...] = SPEED_SHAPES, window: float = 0.0,
-    et_options: dict[str, Any] | None = None,
+    et_options: dict[str, Any] | None = None, seed: int = 0,
 ) -> None:
-    """Print each shape's speed over ``seconds`` simulated s; with ``window`` > 0, first a
-    line per ``window`` simulated s with that stretch's speed and the robots' states
-    (``et_options``: ETParams fields, as ``--et`` gives them)."""
+    """Print each shape's speed over ``seconds`` simulated s of seed ``seed``'s run; with
+    ``window`` > 0, first a line per ``window`` simulated s with that stretch's speed and
+    the robots' states (``et_options``: ETParams fields, as ``--et`` gives them)."""
     tmp = Path(tempfile.mkdtemp())
     print(f"load average {os.getloadavg()}, threads {sim.threads}, control threads "
           f"{sim.control_threads}, message delay {sim.message_delay_ticks}, "
@@ -112,7 +112,7 @@ def speed(
     for name in shapes:
         shape = shape_path(name, tmp)
         run = ETRun(
-            RunConfig(shape=shape, seed=0, max_time_s=seconds, layout="cluster",
+            RunConfig(shape=shape, seed=seed, max_time_s=seconds, layout="cluster",
                       et=ETParams(**(et_options or {}))),
             sim_params=sim,
         )
@@ -258,6 +258,8 @@ def main() -> None:
     parser.add_argument("--window", type=float, default=0.0,
                         help="speed: also print the speed and states every WINDOW simulated s")
     parser.add_argument("--seeds", type=int, default=20)
+    parser.add_argument("--speed-seed", type=int, default=0,
+                        help="speed: the seed of the timed runs (another course, another speed)")
     parser.add_argument(
         "--first-seed", type=int, default=0,
         help="formation: first seed (fresh seeds for comparisons: the defaults were tuned on 0-9)",
@@ -299,7 +301,7 @@ def main() -> None:
         parser.error(str(err))
     if args.what == "speed":
         speed(args.seconds, sim, tuple((args.shapes or ",".join(SPEED_SHAPES)).split(",")),
-              args.window, dict(args.et))
+              args.window, dict(args.et), args.speed_seed)
     elif args.what == "hash":
         seeds = [int(s) for s in (args.hash_seeds or "0,1").split(",")]
         hashes(args.seconds, sim, (args.shapes or "T,disc1000").split(","), seeds,

@@ -83,6 +83,19 @@ _LG6 = 1.531383769920937332e-01
 _LG7 = 1.479819860511658591e-01
 _SQRT_HALF = 7.07106781186547524401e-01
 
+# exp(r) = 1 + 2r / (R(r) - r) on |r| <= ln2 / 2, R(r) = 2 + r^2 P(r^2)
+_INV_LN2 = 1.44269504088896338700e00
+_P1 = 1.66666666666666019037e-01
+_P2 = -2.77777777770155933842e-03
+_P3 = 6.61375632143793436117e-05
+_P4 = -1.65339022054652515390e-06
+_P5 = 4.13813679705723846039e-08
+
+# the normal ziggurat: layers, the base layer's right edge r, and each layer's area
+_ZIG_LAYERS = 256
+_ZIG_R = 3.6541528853610088
+_ZIG_AREA = 4.92867323399e-03
+
 
 @njit(cache=True, inline="always")
 def _sin_kernel(x):  # type: ignore[no-untyped-def]
@@ -214,16 +227,77 @@ def log(x):  # type: ignore[no-untyped-def]
 
 
 @njit(cache=True)
-def normal_pair(rng):  # type: ignore[no-untyped-def]
-    """Two independent standard normal draws from ``rng`` (a numpy Generator), by
-    Marsaglia's polar method: 1.27 pairs of uniforms per pair on average."""
+def exp(x):  # type: ignore[no-untyped-def]
+    """e to the power ``x`` (0 below -745, inf above 709.78)."""
+    if x != x:
+        return x
+    if x > 709.782712893384:
+        return np.inf
+    if x < -745.1332191019411:
+        return 0.0
+    k = np.floor(x * _INV_LN2 + 0.5)
+    hi = x - k * _LN2_HI
+    lo = k * _LN2_LO
+    r = hi - lo
+    z = r * r
+    c = r - z * (_P1 + z * (_P2 + z * (_P3 + z * (_P4 + z * _P5))))
+    y = 1.0 - ((lo - (r * c) / (2.0 - c)) - hi)
+    return math.ldexp(y, int(k))
+
+
+def _ziggurat_tables() -> tuple[np.ndarray, np.ndarray]:
+    """The normal ziggurat's layer edges x_0 > x_1 = r > ... > x_256 = 0 and the density
+    exp(-x^2 / 2) at each ((257,) float64 each), computed with this module's functions so
+    that they are the same everywhere. Layer 0 is the base strip with the tail beyond r,
+    its width the strip's area over f(r)."""
+    # (the functions' Python bodies: CPython's float arithmetic rounds as the compiled
+    # code does, and no compile is needed at import)
+    exp_, log_ = exp.py_func, log.py_func
+    x = np.zeros(_ZIG_LAYERS + 1)
+    f = np.ones(_ZIG_LAYERS + 1)
+    x[0] = _ZIG_AREA / exp_(-0.5 * _ZIG_R * _ZIG_R)
+    x[1] = _ZIG_R
+    for i in range(1, _ZIG_LAYERS - 1):
+        inner = _ZIG_AREA / x[i] + exp_(-0.5 * x[i] * x[i])
+        x[i + 1] = math.sqrt(-2.0 * log_(inner)) if inner < 1.0 else 0.0
+    for i in range(_ZIG_LAYERS):
+        f[i] = exp_(-0.5 * x[i] * x[i])
+    return x, f
+
+
+_ZIG_X, _ZIG_F = _ziggurat_tables()
+
+
+@njit(cache=True, inline="always")
+def normal(rng):  # type: ignore[no-untyped-def]
+    """One standard normal draw from ``rng`` (a numpy Generator): Marsaglia and Tsang's
+    ziggurat with 256 layers. One uniform picks the layer (its top 8 bits) and the point
+    in it (the other 45); 99 % of draws end there, the others test the curve with
+    :func:`exp` or draw the tail beyond r with :func:`log`."""
     while True:
-        u = 2.0 * rng.random() - 1.0
-        v = 2.0 * rng.random() - 1.0
-        s = u * u + v * v
-        if 0.0 < s < 1.0:
-            scale = np.sqrt(-2.0 * log(s) / s)
-            return u * scale, v * scale
+        u = rng.random() * _ZIG_LAYERS
+        i = int(u)
+        x = (2.0 * (u - i) - 1.0) * _ZIG_X[i]
+        if abs(x) < _ZIG_X[i + 1]:
+            return x
+        if i == 0:
+            while True:
+                a = -log(1.0 - rng.random()) / _ZIG_R
+                b = -log(1.0 - rng.random())
+                if b + b >= a * a:
+                    return _ZIG_R + a if x > 0.0 else -(_ZIG_R + a)
+        y = _ZIG_F[i] + rng.random() * (_ZIG_F[i + 1] - _ZIG_F[i])
+        if y < exp(-0.5 * x * x):
+            return x
+
+
+@njit(cache=True)
+def normal_array(rng, n):  # type: ignore[no-untyped-def]
+    """``n`` standard normal draws from ``rng`` by :func:`normal` ((n,) float64)."""
+    out = np.empty(n)
+    for k in range(n):
+        out[k] = normal(rng)
+    return out
 
 
 @njit(cache=True)
@@ -244,24 +318,6 @@ def atan2_array(y, x):  # type: ignore[no-untyped-def]
     out = np.empty(y.size)
     for k in range(y.size):
         out[k] = atan2(y[k], x[k])
-    return out
-
-
-@njit(cache=True)
-def normal(rng):  # type: ignore[no-untyped-def]
-    """One standard normal draw from ``rng`` (the first of :func:`normal_pair`)."""
-    return normal_pair(rng)[0]
-
-
-@njit(cache=True)
-def normal_array(rng, n):  # type: ignore[no-untyped-def]
-    """``n`` standard normal draws from ``rng``, in pairs from :func:`normal_pair` ((n,)
-    float64)."""
-    out = np.empty(n)
-    for k in range(0, n - 1, 2):
-        out[k], out[k + 1] = normal_pair(rng)
-    if n % 2:
-        out[n - 1] = normal_pair(rng)[0]
     return out
 
 
@@ -295,7 +351,7 @@ def log_as(x, portable):  # type: ignore[no-untyped-def]
 
 @njit(cache=True, inline="always")
 def normal_as(rng, portable):  # type: ignore[no-untyped-def]
-    """:func:`normal` when ``portable``, else ``rng.standard_normal()`` (numpy's
+    """:func:`normal` when ``portable``, else ``rng.standard_normal()`` (numpy's own
     ziggurat, which calls the platform's exp and log on rare draws)."""
     if portable:
         return normal(rng)

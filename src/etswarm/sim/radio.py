@@ -5,8 +5,8 @@ broadcast phase comes up this tick (``tick % tx_period == tx_phase``) sends its 
 ``out_type``/``out_data``. Every other present, alive robot whose centre lies within
 ``comm_range`` receives a copy unless it is lost (independent probability ``loss`` per
 receiver); the copy carries the centre distance plus N(0, dist_noise) noise, clipped at 0
-(with ``portable_math`` drawn in pairs by ``fpmath.normal_pair``, the same bits on every
-machine). A full inbox
+(with ``portable_math`` drawn by ``fpmath.normal``, the same bits on every machine). A
+full inbox
 (K messages) drops further copies and counts them. Senders are handled in index order, so
 inbox order is sender order; receivers of one sender come in cell-list order (their inbox
 rows, scattered in memory, are prefetched first).
@@ -17,7 +17,7 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
-from etswarm.sim.fpmath import normal_pair
+from etswarm.sim.fpmath import normal_as
 from etswarm.sim.neighbours import G_INV, G_MARGIN, G_OX, G_OY, P_X, P_Y, cell_range
 from etswarm.sim.prefetch import prefetch
 from etswarm.sim.world import PAYLOAD_BYTES
@@ -70,8 +70,6 @@ def radio_phase(tick, cfg, grid, pos, alive, present, tx_phase, out_on, out_type
     cand_s = np.empty(n, dtype=np.uint32)
     cand_d2 = np.empty(n)
     portable = cfg.portable
-    spare = 0.0  # the second draw of the last normal pair, when unused
-    has_spare = False
     sent = 0
     delivered = 0
     lost = 0
@@ -119,15 +117,7 @@ def radio_phase(tick, cfg, grid, pos, alive, present, tx_phase, out_on, out_type
                 continue
             d = np.sqrt(d2)
             if noise > 0.0:
-                if not portable:
-                    d += noise * rng.standard_normal()
-                elif has_spare:
-                    d += noise * spare
-                    has_spare = False
-                else:
-                    first, spare = normal_pair(rng)
-                    has_spare = True
-                    d += noise * first
+                d += noise * normal_as(rng, portable)
                 if d < 0.0:
                     d = 0.0
             in_type[j, k] = mtype
