@@ -157,6 +157,18 @@ def test_view_command_takes_et_options(tmp_path, monkeypatch) -> None:
     assert bad.exit_code != 0 and "wave_s" in str(bad.exception)
 
 
+def test_view_command_takes_portable_maths(monkeypatch) -> None:
+    from etswarm.algorithm.live import ETLive
+
+    seen = []
+    monkeypatch.setattr(ETLive, "__init__", lambda self, run: seen.append(run.sim_params) or None)
+    monkeypatch.setattr("etswarm.cli.viewer_commands._write_video", lambda *a, **k: None)
+    for args in (["T", "--portable-math"], ["T"]):
+        result = CliRunner().invoke(view_command, [*args, "--video", "x.gif"])
+        assert result.exit_code == 0, result.output
+    assert [p.portable_math for p in seen] == [True, False]
+
+
 def test_view_command_argument_errors() -> None:
     runner = CliRunner()
     result = runner.invoke(view_command, ["--controller", "randomwalk", "T", "--frames", "1"])

@@ -102,6 +102,9 @@ DEFAULT_SPEED = {"et": 60.0, "randomwalk": 10.0}
     default=None,
     help="Write a video (.mp4/.gif) headless instead of opening a window.",
 )
+@click.option("--portable-math", is_flag=True, default=False,
+              help="ET: the robots' maths by etswarm's own functions, as 'etswarm run "
+                   "--portable-math' (the same run for a seed on every machine).")
 @window_options
 def view(
     shape: str | None,
@@ -117,6 +120,7 @@ def view(
     et_options: tuple[str, ...],
     speed: float | None,
     video: Path | None,
+    portable_math: bool,
     size: str,
     fps: float,
     paused: bool,
@@ -149,7 +153,7 @@ def view(
                 "missing SHAPE (a library name or a bitmap file); or use --controller randomwalk"
             )
         live = _et_live(shape, robots, seed, loss, noise, max_time, layout, release_interval, fit,
-                        et_options)
+                        et_options, portable_math)
     if video is not None:
         _write_video(live, video, fps, speed, frames or 300, window_size)
         return
@@ -187,6 +191,7 @@ def _et_live(  # type: ignore[no-untyped-def]
     release_interval: float | None,
     fit: bool,
     et_options: tuple[str, ...] = (),
+    portable_math: bool = False,
 ):
     """The ET run of ``etswarm run`` with the same options, as a LiveRun."""
     from dataclasses import replace
@@ -194,6 +199,7 @@ def _et_live(  # type: ignore[no-untyped-def]
     from etswarm.algorithm.live import ETLive
     from etswarm.algorithm.params import ETParams, parse_et_option
     from etswarm.algorithm.run import ETRun, RunConfig
+    from etswarm.sim.params import SimParams
 
     et = ETParams() if release_interval is None else ETParams(release_interval_s=release_interval)
     et = replace(et, **dict(parse_et_option(text) for text in et_options))
@@ -211,7 +217,7 @@ def _et_live(  # type: ignore[no-untyped-def]
     from rich.console import Console
 
     with Console(stderr=True).status(f"setting up {shape} (a first run compiles the controller)"):
-        et_run = ETRun(config)
+        et_run = ETRun(config, sim_params=SimParams(portable_math=portable_math))
     for note in et_run.notes:
         click.echo(f"etswarm: {note}", err=True)
     return ETLive(et_run)
