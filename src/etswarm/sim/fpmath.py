@@ -1,4 +1,5 @@
-"""Sine, cosine, arctangent and logarithm that give the same bits on every machine.
+"""Sine, cosine, arctangent, logarithm, exponential and normal draws that give the same
+bits on every machine.
 
 glibc picks its maths functions by CPU at load time (``__sin_fma`` where the CPU has
 FMA, other code where it has not), and numba's ``np.sin``, ``math.atan2``, ``np.log`` and
@@ -272,7 +273,7 @@ _ZIG_X, _ZIG_F = _ziggurat_tables()
 def normal(rng):  # type: ignore[no-untyped-def]
     """One standard normal draw from ``rng`` (a numpy Generator): Marsaglia and Tsang's
     ziggurat with 256 layers. One uniform picks the layer (its top 8 bits) and the point
-    in it (the other 45); 99 % of draws end there, the others test the curve with
+    in it (the other 45); 98.5 % of draws end there, the others test the curve with
     :func:`exp` or draw the tail beyond r with :func:`log`."""
     while True:
         u = rng.random() * _ZIG_LAYERS
