@@ -131,18 +131,6 @@ def sin_cos(x):  # type: ignore[no-untyped-def]
     return -c, s
 
 
-@njit(cache=True, inline="always")
-def sin(x):  # type: ignore[no-untyped-def]
-    """sin(x), ``x`` in rad (see :func:`sin_cos`)."""
-    return sin_cos(x)[0]
-
-
-@njit(cache=True, inline="always")
-def cos(x):  # type: ignore[no-untyped-def]
-    """cos(x), ``x`` in rad (see :func:`sin_cos`)."""
-    return sin_cos(x)[1]
-
-
 @njit(cache=True)
 def atan(x):  # type: ignore[no-untyped-def]
     """arctan(x) in (-pi/2, pi/2)."""
