@@ -280,8 +280,9 @@ def main() -> None:
                         help="SimParams.control_threads (speed, hash, formation)")
     parser.add_argument("--message-delay", type=int, default=0, choices=[0, 1],
                         help="SimParams.message_delay_ticks (speed, hash, formation)")
-    parser.add_argument("--portable-math", action="store_true",
-                        help="SimParams.portable_math (speed, hash, formation)")
+    parser.add_argument("--native-math", dest="portable_math", action="store_false",
+                        help="SimParams.portable_math off: the platform's maths library "
+                             "(speed, hash, formation; the default's runs up to session 52)")
     parser.add_argument("--jobs", type=int, default=1, help="worker processes (formation)")
     parser.add_argument(
         "--et", type=parse_option, action="append", default=[], metavar="NAME=VALUE",

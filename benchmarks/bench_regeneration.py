@@ -205,9 +205,9 @@ def main() -> None:
     )
     parser.add_argument("--message-delay", type=int, choices=(0, 1), default=0,
                         help="SimParams.message_delay_ticks of every run.")
-    parser.add_argument("--portable-math", action="store_true",
-                        help="SimParams.portable_math for every run (the same bits on every "
-                             "machine).")
+    parser.add_argument("--native-math", dest="portable_math", action="store_false",
+                        help="SimParams.portable_math off for every run: the platform's "
+                             "maths library (the default's runs up to session 52).")
     args = parser.parse_args()
     et_options = dict(args.et)
     methods = ("tree", "walk") if args.census == "both" else (args.census,)

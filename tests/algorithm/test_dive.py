@@ -8,7 +8,7 @@ import pytest
 from etswarm.algorithm.params import ETParams
 from etswarm.algorithm.run import ETRun, RunConfig
 
-from .traced import SESSION_19_WIDENING
+from .traced import NATIVE_MATHS, SESSION_19_WIDENING
 
 #: The settings these runs were traced with (session 12): with the wider consistency
 #: tolerance of session 13 the same seeds form without diving too.
@@ -23,7 +23,7 @@ TRACED = {
 def formation(shape: str, seed: int, **et: float) -> dict:
     params = ETParams(**{**TRACED, **et})
     config = RunConfig(shape=shape, seed=seed, max_time_s=4 * 3600, et=params)
-    summary = ETRun(config).run()
+    summary = ETRun(config, sim_params=NATIVE_MATHS).run()
     assert summary["duplicate_tags"] == []
     return summary
 

@@ -28,7 +28,7 @@ from etswarm.algorithm.params import ETParams
 from etswarm.algorithm.run import ETRun, RunConfig
 from etswarm.algorithm.states import PLACED_STATES
 
-from .traced import SESSION_19_WIDENING, SESSION_33_PLACEMENT
+from .traced import NATIVE_MATHS, SESSION_19_WIDENING, SESSION_33_PLACEMENT
 
 TPS = 31
 
@@ -121,7 +121,7 @@ def regrown(
             et=ETParams(placement=placement, site_offsets="off", lost_homing="off",
                         placement_off_shape=off_shape, **SESSION_19_WIDENING,
                         **SESSION_33_PLACEMENT),
-        )
+        ), sim_params=NATIVE_MATHS
     )
     while not any(e["kind"] == "damage" for e in run.events):
         assert run.sim_time_s < 4 * 3600, "the starfish did not form"

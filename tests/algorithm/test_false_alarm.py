@@ -57,7 +57,7 @@ from etswarm.algorithm.run import ETRun, RunConfig
 from etswarm.algorithm.states import State
 from etswarm.cli.run_outputs import describe
 
-from .traced import SESSION_34_FORMATION
+from .traced import NATIVE_MATHS, SESSION_34_FORMATION
 
 TPS = 31
 TICK = 20_000
@@ -196,7 +196,8 @@ def test_the_robot_that_started_it_notes_the_site_it_missed_and_then_excuses_it(
 def formed_triangle(false_alarm: str) -> ETRun:
     run = ETRun(
         RunConfig(shape="triangle", seed=0, max_time_s=3 * 3600,
-                  et=ETParams(false_alarm=false_alarm, **SESSION_34_FORMATION))
+                  et=ETParams(false_alarm=false_alarm, **SESSION_34_FORMATION)),
+                sim_params=NATIVE_MATHS
     )
     assert run.run()["formed"]
     return run

@@ -9,7 +9,7 @@ from etswarm.algorithm.fill_order import finishes, locatable, strands_a_site
 from etswarm.algorithm.params import ETParams
 from etswarm.algorithm.run import ETRun, RunConfig
 
-from .traced import SESSION_19_WIDENING
+from .traced import NATIVE_MATHS, SESSION_19_WIDENING
 
 #: Gene grid and memory window: tags -3..7 in both axes.
 ORIGIN = -3
@@ -78,7 +78,7 @@ def test_heart_seed_9_forms_only_with_the_lookahead() -> None:
                 lost_homing="off", **SESSION_19_WIDENING,
             ),
         )
-        run = ETRun(config)
+        run = ETRun(config, sim_params=NATIVE_MATHS)
         summary = run.run()
         assert summary["duplicate_tags"] == []
         outcomes[lookahead] = summary["formed"]

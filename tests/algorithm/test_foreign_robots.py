@@ -40,7 +40,7 @@ from etswarm.algorithm.states import State
 from etswarm.errors import EtswarmError
 
 from .test_pair_side import GENE_X0, WINDOW, pair_world
-from .traced import SESSION_26_FORMATION, SESSION_31_PLACEMENT
+from .traced import NATIVE_MATHS, SESSION_26_FORMATION, SESSION_31_PLACEMENT
 
 
 def pair_off_the_target(et: ETParams):  # type: ignore[no-untyped-def]
@@ -90,7 +90,8 @@ def test_each_leg_of_a_cut_h_regrows_with_its_own_searchers() -> None:
     # Traced: with "follow" the 11-robot leg ends the 4 h run with two free sites and its
     # two searchers going round the 12-robot leg's finished shape.
     run = ETRun(RunConfig(shape="H", seed=0, damage=("split y=mid",), max_time_s=2 * 3600,
-                          et=ETParams(**SESSION_26_FORMATION, **SESSION_31_PLACEMENT)))
+                          et=ETParams(**SESSION_26_FORMATION, **SESSION_31_PLACEMENT)),
+                sim_params=NATIVE_MATHS)
     summary = run.run()
     groups = summary["components"]
     assert sorted(c["robots"] for c in groups) == [11, 12, 27]

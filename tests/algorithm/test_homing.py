@@ -39,7 +39,7 @@ from etswarm.algorithm.run import ETRun, RunConfig
 from etswarm.algorithm.states import State
 from etswarm.sim import FORWARD, LEFT, RIGHT, SimParams, Simulator, World
 
-from .traced import SESSION_19_WIDENING
+from .traced import NATIVE_MATHS, SESSION_19_WIDENING
 
 
 class Silent:
@@ -218,7 +218,7 @@ def test_square_seed_228_waits_for_a_searcher_lost_along_the_repository(homing: 
     spiral started again at 1 m (until session 33), and the square stayed one robot
     short; the spiral now widens to 1.5 m, and its last laps find the shape."""
     run = ETRun(RunConfig(shape="square", seed=228, max_time_s=4 * 3600,
-                          et=ETParams(lost_homing=homing)))
+                          et=ETParams(lost_homing=homing)), sim_params=NATIVE_MATHS)
     summary = run.run()
     assert summary["formed"]
     assert not summary["duplicate_tags"]
@@ -256,7 +256,8 @@ def test_home_is_where_it_last_heard_the_group() -> None:
 def test_triangle_seed_31_waits_for_a_lost_searcher_without_homing(homing: str) -> None:
     """The traced run: with the fixed spiral, its last searchers never came back."""
     run = ETRun(RunConfig(shape="triangle", seed=31, max_time_s=2 * 3600,
-                          et=ETParams(lost_homing=homing, **SESSION_19_WIDENING)))
+                          et=ETParams(lost_homing=homing, **SESSION_19_WIDENING)),
+                sim_params=NATIVE_MATHS)
     summary = run.run()
     assert summary["formed"] == (homing == "on")
     assert not summary["duplicate_tags"]

@@ -26,7 +26,7 @@ from etswarm.algorithm.params import ETParams
 from etswarm.algorithm.run import ETRun, RunConfig
 from etswarm.algorithm.states import State
 
-from .traced import SESSION_26_FORMATION, SESSION_31_PLACEMENT
+from .traced import NATIVE_MATHS, SESSION_26_FORMATION, SESSION_31_PLACEMENT
 
 GENE_X0 = -3
 
@@ -106,11 +106,12 @@ def test_two_remnants_grown_into_each_other_regrow_as_one() -> None:
               "max_time_s": 7200}
     apart = ETRun(
         RunConfig(**config, et=ETParams(merge_remnants="off", **SESSION_26_FORMATION,
-                                        **SESSION_31_PLACEMENT))
+                                        **SESSION_31_PLACEMENT)), sim_params=NATIVE_MATHS
     ).run()
     assert not any(c["formed"] for c in apart["components"] if c["robots"] >= 6)
     merged = ETRun(
-        RunConfig(**config, et=ETParams(**SESSION_26_FORMATION, **SESSION_31_PLACEMENT))
+        RunConfig(**config, et=ETParams(**SESSION_26_FORMATION, **SESSION_31_PLACEMENT)),
+                   sim_params=NATIVE_MATHS
     ).run()
     counts = [e["count"] for e in merged["events"] if e["kind"] == "census"]
     assert counts[:2] == [29, 14] and counts[-1] == 42

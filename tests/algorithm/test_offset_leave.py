@@ -33,6 +33,8 @@ from etswarm.algorithm.run import ETRun, RunConfig
 from etswarm.algorithm.states import State
 from etswarm.errors import EtswarmError
 
+from .traced import NATIVE_MATHS
+
 TAG = (2, 1)
 
 
@@ -80,7 +82,7 @@ def test_a_robot_nearer_its_site_not_refining_or_in_a_first_formation_stays() ->
 def run_kill(seed: int, **options: float) -> dict:
     """Summary of `T` `kill random=0.1` with ``options`` set, over the default 4 h."""
     run = ETRun(RunConfig(shape="T", seed=seed, damage=("kill random=0.1",),
-                          et=ETParams(**options)))
+                          et=ETParams(**options)), sim_params=NATIVE_MATHS)
     return run.run()
 
 

@@ -23,7 +23,7 @@ from etswarm.algorithm.pinch import (
 )
 from etswarm.shapes.lattice import tags_to_xy
 
-from .traced import SESSION_19_WIDENING, SESSION_33_PLACEMENT, SESSION_44_FORMATION
+from .traced import NATIVE_MATHS, SESSION_19_WIDENING, SESSION_33_PLACEMENT, SESSION_44_FORMATION
 
 D = 40.0
 HELD_DIRS = (1, 2, 3, 4, 5)
@@ -197,12 +197,13 @@ def test_refusing_pinching_captures_lets_the_last_sites_fill(shape: str, seed: i
     # Without the rule the run stalls with a robot 36 mm or nearer a free site's centre
     # (a body is 33 mm across): no searcher fits in.
     off = ETRun(RunConfig(shape=shape, seed=seed, max_time_s=4 * 3600,
-                          et=ETParams(capture_pinch_mm=0.0, **SESSION_19_WIDENING)))
+                          et=ETParams(capture_pinch_mm=0.0, **SESSION_19_WIDENING)),
+                sim_params=NATIVE_MATHS)
     assert not off.run()["formed"]
     assert nearest_to_a_free_site_mm(off) < 36.0
     # With it the same swarm forms the shape.
     summary = ETRun(RunConfig(shape=shape, seed=seed, max_time_s=4 * 3600,
-                              et=ETParams(**SESSION_19_WIDENING))).run()
+                              et=ETParams(**SESSION_19_WIDENING)), sim_params=NATIVE_MATHS).run()
     assert summary["formed"] and summary["jaccard"] == 1.0
     assert summary["duplicate_tags"] == []
 
@@ -253,13 +254,14 @@ def test_refusing_narrow_mouths_lets_a_regrowth_fill_its_last_site() -> None:
     config = {"shape": "dumbbell", "seed": 5, "damage": ("split y=mid",),
               "max_time_s": 4 * 3600}
     off = ETRun(RunConfig(**config, et=ETParams(capture_mouth_mm=0.0, **SESSION_33_PLACEMENT,
-                                                 **SESSION_44_FORMATION)))
+                                                 **SESSION_44_FORMATION)), sim_params=NATIVE_MATHS)
     summary = off.run()
     assert summary["formed"]  # the first formation
     assert not all(c["formed"] for c in summary["components"])
     assert narrowest_mouth_mm(off) < 68.0
     on = ETRun(RunConfig(**config, et=ETParams(**SESSION_33_PLACEMENT,
-                                                **SESSION_44_FORMATION))).run()
+                                                **SESSION_44_FORMATION)),
+               sim_params=NATIVE_MATHS).run()
     assert len(on["components"]) >= 2
     assert all(c["formed"] and c["jaccard"] == 1.0 for c in on["components"])
     assert on["duplicate_tags"] == []

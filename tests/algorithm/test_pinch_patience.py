@@ -14,13 +14,14 @@ from etswarm.algorithm.params import F_PINCH_PATIENCE, ETParams
 from etswarm.algorithm.run import ETRun, RunConfig
 from etswarm.errors import EtswarmError
 
-from .traced import SESSION_44_FORMATION
+from .traced import NATIVE_MATHS, SESSION_44_FORMATION
 
 
 @pytest.mark.parametrize("patience_s", [0.0, 3600.0])
 def test_disc_seed_259_forms_once_long_searchers_stop_refusing(patience_s: float) -> None:
     run = ETRun(RunConfig(shape="disc", seed=259, max_time_s=4 * 3600,
-                          et=ETParams(pinch_patience_s=patience_s, **SESSION_44_FORMATION)))
+                          et=ETParams(pinch_patience_s=patience_s, **SESSION_44_FORMATION)),
+                sim_params=NATIVE_MATHS)
     summary = run.run()
     assert not summary["duplicate_tags"]
     if patience_s > 0:

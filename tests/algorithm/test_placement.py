@@ -15,7 +15,7 @@ from etswarm.algorithm.placement import (
 from etswarm.algorithm.run import ETRun, RunConfig
 from etswarm.errors import EtswarmError
 
-from .traced import SESSION_34_FORMATION
+from .traced import NATIVE_MATHS, SESSION_34_FORMATION
 
 #: A bar of 3 x 2 cells (tags).
 BAR = np.array([[0, 0], [1, 0], [2, 0], [0, 1], [1, 1], [2, 1]])
@@ -117,7 +117,8 @@ def kept_after_kill(seeds: str) -> tuple[int, int, bool]:
     Leader's site. (Traced in session 22.)"""
     run = ETRun(
         RunConfig(shape="T", seed=15, max_time_s=3 * 3600, damage=("kill random=0.1",),
-                  et=ETParams(placement_seeds=seeds, **SESSION_34_FORMATION))
+                  et=ETParams(placement_seeds=seeds, **SESSION_34_FORMATION)),
+                sim_params=NATIVE_MATHS
     )
     while not any(e["kind"] == "damage" for e in run.events):
         assert run.sim_time_s < 2 * 3600, "the T did not form"

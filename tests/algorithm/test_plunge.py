@@ -33,6 +33,8 @@ from etswarm.algorithm.states import State
 from etswarm.measures.formation import duplicate_tags, min_pair_distance
 from etswarm.sim.world import FORWARD, LEFT, RIGHT
 
+from .traced import NATIVE_MATHS
+
 TICKS_PER_S = 31
 TICK = 200_000
 SEARCHER = 5
@@ -132,7 +134,7 @@ def test_a_plunging_searcher_keeps_nearer_to_the_group() -> None:
 def regrowth(plunge_s: float) -> dict:
     config = RunConfig(shape="starfish", seed=1, damage=("split y=mid",), max_time_s=4 * 3600,
                        et=ETParams(regrowth_plunge_s=plunge_s))
-    summary = ETRun(config).run()
+    summary = ETRun(config, sim_params=NATIVE_MATHS).run()
     assert summary["duplicate_tags"] == []
     return summary
 
@@ -159,7 +161,8 @@ def test_starfish_first_formations_that_form_only_with_the_first_formation_plung
     # free sites.
     def run(first_after_s: float) -> ETRun:
         r = ETRun(RunConfig(shape="starfish", seed=seed, max_time_s=4 * 3600,
-                            et=ETParams(first_plunge_after_s=first_after_s)))
+                            et=ETParams(first_plunge_after_s=first_after_s)),
+                  sim_params=NATIVE_MATHS)
         r.run()
         return r
 

@@ -8,12 +8,12 @@ import pytest
 from etswarm.algorithm.params import ETParams
 from etswarm.algorithm.run import ETRun, RunConfig
 
-from .traced import SESSION_34_FORMATION, SESSION_44_FORMATION
+from .traced import NATIVE_MATHS, SESSION_34_FORMATION, SESSION_44_FORMATION
 
 
 def regenerate(damage: str, seed: int) -> dict:
     run = ETRun(RunConfig(shape="triangle", seed=seed, max_time_s=3 * 3600, damage=(damage,),
-                          et=ETParams(**SESSION_34_FORMATION)))
+                          et=ETParams(**SESSION_34_FORMATION)), sim_params=NATIVE_MATHS)
     summary = run.run()
     # Census, one Leader and unique tags per remnant are checked on every run.
     censuses = [e for e in summary["events"] if e["kind"] == "census"]

@@ -10,7 +10,7 @@ from __future__ import annotations
 from etswarm.algorithm.params import ETParams
 from etswarm.algorithm.run import ETRun, RunConfig
 
-from .traced import SESSION_19_WIDENING, SESSION_31_PLACEMENT
+from .traced import NATIVE_MATHS, SESSION_19_WIDENING, SESSION_31_PLACEMENT
 
 #: The consistency settings of session 12, which the first formations were traced with.
 # the settings these runs were traced with (before the pinched-mouth default, the lookahead,
@@ -28,7 +28,7 @@ def split_run(shape: str, damage: str, seed: int, **et: float) -> dict:
         shape=shape, seed=seed, max_time_s=4 * 3600, damage=(damage,),
         et=ETParams(**{"dive_mm": 0.0, **TRACED, **et}),
     )
-    summary = ETRun(config).run()
+    summary = ETRun(config, sim_params=NATIVE_MATHS).run()
     assert summary["formed"]
     assert summary["max_leaders_per_component"] <= 1
     assert summary["duplicate_tags"] == []

@@ -24,6 +24,8 @@ from etswarm.algorithm.run import ETRun, RunConfig
 from etswarm.algorithm.states import State
 from etswarm.measures.formation import components
 
+from .traced import NATIVE_MATHS
+
 TAG = (2, 1)
 
 
@@ -70,7 +72,8 @@ def test_a_robot_that_counts_heard_or_reported_neighbours_stays() -> None:
 
 
 def run_cut(et: ETParams) -> ETRun:
-    run = ETRun(RunConfig(shape="H", seed=0, damage=("split x=mid",), et=et))
+    run = ETRun(RunConfig(shape="H", seed=0, damage=("split x=mid",), et=et),
+                sim_params=NATIVE_MATHS)
     run.run()
     return run
 

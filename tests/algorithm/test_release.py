@@ -32,7 +32,7 @@ from etswarm.algorithm.release import (
 from etswarm.algorithm.run import ETRun, RunConfig
 from etswarm.algorithm.states import State
 
-from .traced import SESSION_26_FORMATION
+from .traced import NATIVE_MATHS, SESSION_26_FORMATION
 
 TICK = 10_000
 
@@ -243,7 +243,8 @@ def test_a_lone_robot_left_by_a_removal_does_not_stall_the_remnant_beside_it() -
     # in earshot of one Queued robot of the 23-robot remnant, which waited for it to leave
     # first until the end of the 4 h run, one site short.
     summary = ETRun(RunConfig(shape="L", seed=30, damage=("remove random=0.2",),
-                              max_time_s=5400, et=ETParams(**SESSION_26_FORMATION))).run()
+                              max_time_s=5400, et=ETParams(**SESSION_26_FORMATION)),
+                    sim_params=NATIVE_MATHS).run()
     groups = summary["components"]
     assert [g["robots"] for g in groups if g["too_small"]] == [1]
     grown = [g for g in groups if not g["too_small"]]

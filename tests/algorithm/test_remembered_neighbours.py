@@ -38,7 +38,7 @@ from etswarm.algorithm.run import ETRun, RunConfig
 from etswarm.algorithm.site_memory import mark
 from etswarm.algorithm.states import State
 
-from .traced import SESSION_44_FORMATION
+from .traced import NATIVE_MATHS, SESSION_44_FORMATION
 
 TPS = 31
 #: A hexagon of seven sites round (0, 0).
@@ -116,7 +116,8 @@ def test_a_torn_starfish_counts_as_formed(wait_s: float) -> None:
     lattice neighbours stand 73-77 mm away stay Active."""
     run = ETRun(
         RunConfig(shape="starfish", seed=274, max_time_s=4 * 3600,
-                  et=ETParams(remembered_neighbours_s=wait_s, **SESSION_44_FORMATION))
+                  et=ETParams(remembered_neighbours_s=wait_s, **SESSION_44_FORMATION)),
+                sim_params=NATIVE_MATHS
     )
     summary = run.run()
     assert summary["components"][0]["free_sites"] == 0

@@ -8,14 +8,14 @@ from etswarm.algorithm.params import ETParams
 from etswarm.algorithm.run import ETRun, RunConfig
 from etswarm.cli.run_outputs import describe
 
-from .traced import SESSION_44_FORMATION
+from .traced import NATIVE_MATHS, SESSION_44_FORMATION
 
 
 def test_a_robot_the_cut_left_alone_stays_a_remnant_of_its_own() -> None:
     # `T` seed 7 cut at x=0: robot 12 is left alone on the cut line, counts itself and
     # stays put; the 11-robot half regrows to within radio range of it without merging.
     run = ETRun(RunConfig(shape="T", seed=7, max_time_s=3 * 3600, damage=("split x=0",),
-                          et=ETParams(**SESSION_44_FORMATION)))
+                          et=ETParams(**SESSION_44_FORMATION)), sim_params=NATIVE_MATHS)
     summary = run.run()
     assert summary["settled"], summary["components"]
     comps = summary["components"]
@@ -38,7 +38,7 @@ def test_three_robots_with_no_two_neighbours_are_too_small_and_stay_put() -> Non
     # kept one of them on a scaled `T`, the other two searched for hours and got lost,
     # as no site can be located from one robot, and the run never settled.
     run = ETRun(RunConfig(shape="T", seed=4, max_time_s=4 * 3600, damage=("split x=0",),
-                          et=ETParams(**SESSION_44_FORMATION)))
+                          et=ETParams(**SESSION_44_FORMATION)), sim_params=NATIVE_MATHS)
     summary = run.run()
     assert summary["settled"] and summary["sim_time_s"] < 4 * 3600, summary["components"]
     (small,) = [c for c in summary["components"] if c["too_small"]]

@@ -11,7 +11,7 @@ from etswarm.algorithm.regeneration import settle_count
 from etswarm.algorithm.run import ETRun, RunConfig
 from etswarm.algorithm.states import State
 
-from .traced import SESSION_19_WIDENING, SESSION_31_PLACEMENT
+from .traced import NATIVE_MATHS, SESSION_19_WIDENING, SESSION_31_PLACEMENT
 
 GRACE = 100
 
@@ -56,7 +56,8 @@ def test_a_large_remnant_elects_and_counts_exactly() -> None:
     run = ETRun(RunConfig(shape="bigdisc", seed=0, max_time_s=3.5 * 3600,
                           et=ETParams(held_gossip_every=0, site_offsets="off",
                                        lost_homing="off", false_alarm="regrow",
-                                       **SESSION_19_WIDENING, **SESSION_31_PLACEMENT)))
+                                       **SESSION_19_WIDENING, **SESSION_31_PLACEMENT)),
+                sim_params=NATIVE_MATHS)
     summary = run.run()
     kinds = [e["kind"] for e in summary["events"]]
     assert "detected" in kinds

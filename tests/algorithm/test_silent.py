@@ -32,7 +32,7 @@ from etswarm.algorithm.silent import (
 )
 from etswarm.algorithm.states import State
 
-from .traced import SESSION_34_FORMATION
+from .traced import NATIVE_MATHS, SESSION_34_FORMATION
 
 TICK = 100_000
 
@@ -143,7 +143,7 @@ def test_a_remnant_with_dead_robots_regrows_around_them() -> None:
     # 0-9: 7 of 10 since lost searchers steer home, 3 of 10 before; see the closing notes
     # for rates).
     run = ETRun(RunConfig(shape="T", seed=0, max_time_s=4 * 3600, damage=("kill random=0.1",),
-                          et=ETParams(**SESSION_34_FORMATION)))
+                          et=ETParams(**SESSION_34_FORMATION)), sim_params=NATIVE_MATHS)
     summary = run.run()
     dead = int(np.sum(run.world.present & ~run.world.alive))
     assert dead >= 2

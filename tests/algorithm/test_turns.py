@@ -14,7 +14,7 @@ from etswarm.errors import EtswarmError
 from etswarm.shapes import load_shape, scale
 from etswarm.shapes.lattice import NEIGHBOUR_OFFSETS, neighbour_counts, sort_cells, turn_cells
 
-from .traced import SESSION_44_FORMATION
+from .traced import NATIVE_MATHS, SESSION_44_FORMATION
 
 #: A bar of 5 x 2 cells (tags), long along X.
 BAR = np.array([[x, y] for y in range(2) for x in range(5)])
@@ -92,7 +92,7 @@ def test_a_split_starfish_regrows_turned_shapes() -> None:
         RunConfig(
             shape="starfish", seed=33, damage=("split y=mid",), max_time_s=4 * 3600,
             et=ETParams(placement_turns="on", **SESSION_44_FORMATION),
-        )
+        ), sim_params=NATIVE_MATHS
     )
     summary = run.run()
     ctl = run.controller

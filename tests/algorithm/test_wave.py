@@ -17,7 +17,7 @@ from etswarm.measures.formation import duplicate_tags, min_pair_distance
 from etswarm.shapes.lattice import neighbour_counts
 
 from .test_site_memory import ORIGIN, hexagon_gene, memory_of, ring
-from .traced import SESSION_47_FORMATION
+from .traced import NATIVE_MATHS, SESSION_47_FORMATION
 
 SEEDS = np.array([[0, 0], [1, 0], [0, 1]])
 
@@ -94,7 +94,8 @@ def test_a_disc_whose_rim_closed_round_free_sites_forms_with_the_wave() -> None:
     # outwards and forms.
     def run(wave_s: float) -> ETRun:
         r = ETRun(RunConfig(shape="disc", seed=213, max_time_s=14400,
-                            et=ETParams(wave_s=wave_s, **SESSION_47_FORMATION)))
+                            et=ETParams(wave_s=wave_s, **SESSION_47_FORMATION)),
+                  sim_params=NATIVE_MATHS)
         r.run()
         return r
 

@@ -15,7 +15,7 @@ from etswarm.algorithm.params import (
 from etswarm.algorithm.search import dive_depth, widening_ticks
 from etswarm.errors import EtswarmError
 
-from .traced import SESSION_34_FORMATION
+from .traced import NATIVE_MATHS, SESSION_34_FORMATION
 
 
 def packed(**options: float) -> tuple[np.ndarray, np.ndarray]:
@@ -56,9 +56,9 @@ def test_faster_widening_fills_the_last_site_sooner() -> None:
     # shape for 20 min before it could take the last site (session 20).
     slow = ETRun(RunConfig(shape="T", seed=30, max_time_s=3 * 3600,
                            et=ETParams(widen_s=1200.0, capture_pinch_refusals=2,
-                                       **SESSION_34_FORMATION))).run()
+                                       **SESSION_34_FORMATION)), sim_params=NATIVE_MATHS).run()
     fast = ETRun(RunConfig(shape="T", seed=30, max_time_s=3 * 3600,
-                           et=ETParams(**SESSION_34_FORMATION))).run()
+                           et=ETParams(**SESSION_34_FORMATION)), sim_params=NATIVE_MATHS).run()
     for summary in (slow, fast):
         assert summary["formed"] and summary["jaccard"] == 1.0
         assert summary["duplicate_tags"] == []
@@ -75,7 +75,7 @@ def test_a_tip_with_two_neighbours_gets_the_wide_window_late_in_the_first_format
     def run(**options: float) -> dict:
         config = RunConfig(shape="H", seed=62, max_time_s=4 * 3600,
                            et=ETParams(**{**SESSION_34_FORMATION, **options}))
-        return ETRun(config).run()
+        return ETRun(config, sim_params=NATIVE_MATHS).run()
 
     default = run()
     assert default["formed"] and default["jaccard"] == 1.0

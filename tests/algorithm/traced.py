@@ -1,6 +1,8 @@
 """Settings that traced scenario tests pin, so that a later change of a default does not
 move their seeds off the situation they were written for."""
 
+from etswarm.sim.params import SimParams
+
 #: Until session 48 a searcher plunged (edge-followed nearer the placed robots) only after
 #: damage; first formations traced before then form as described with this.
 SESSION_47_FORMATION = {"first_plunge_after_s": 0.0}
@@ -37,3 +39,9 @@ SESSION_33_PLACEMENT = {"placement_turns": "off", **SESSION_49_REGROWTH}
 #: Until session 32 a Leader's placement counted cells off the old shape like any other;
 #: regrowths traced before then place and branch as described with this.
 SESSION_31_PLACEMENT = {"placement_off_shape": "any", **SESSION_33_PLACEMENT}
+
+#: Until session 53 every run computed its sines, cosines, arctangents, logarithms and
+#: normal draws with the platform's maths library (``portable_math`` off). Seeds traced
+#: before then run as described with this, on x86-64 machines whose glibc picks its FMA
+#: code, as the machines they were traced on and CI's did.
+NATIVE_MATHS = SimParams(portable_math=False)

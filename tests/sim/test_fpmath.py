@@ -169,22 +169,23 @@ def test_portable_random_walks_with_every_noise_give_the_same_state_without_fma(
 
 
 def test_sweeps_and_the_cli_set_portable_maths() -> None:
-    """``sim_portable_math`` in a sweep's parameters and ``--portable-math`` on ``etswarm
-    run`` reach the run, and its summary says so."""
+    """``sim_portable_math`` in a sweep's parameters and ``--native-math`` on ``etswarm
+    run`` reach the run, and its summary says so (portable is the default)."""
     from click.testing import CliRunner
 
     from etswarm.algorithm.api import run_experiment
     from etswarm.cli.main import cli
     from etswarm.errors import EtswarmError
 
-    on = run_experiment({"shape": "triangle", "seed": 2, "max_time_s": 60.0,
-                         "sim_portable_math": True})
-    off = run_experiment({"shape": "triangle", "seed": 2, "max_time_s": 60.0})
+    off = run_experiment({"shape": "triangle", "seed": 2, "max_time_s": 60.0,
+                          "sim_portable_math": False})
+    on = run_experiment({"shape": "triangle", "seed": 2, "max_time_s": 60.0})
     assert on["portable_math"] is True and off["portable_math"] is False
     assert "sim_portable_math" in run_experiment.parameters  # type: ignore[attr-defined]
     with pytest.raises(EtswarmError, match="unknown run parameter 'sim_threads'"):
         run_experiment({"shape": "triangle", "sim_threads": 2})
-    result = CliRunner().invoke(cli, ["run", "triangle", "--max-time", "60", "--json",
-                                       "--portable-math", "--control-threads", "1"])
-    assert result.exit_code == 0, result.output
-    assert '"portable_math": true' in result.output
+    for flag, shown in (("--native-math", "false"), ("--portable-math", "true"), (None, "true")):
+        args = ["run", "triangle", "--max-time", "60", "--json", "--control-threads", "1"]
+        result = CliRunner().invoke(cli, args + ([flag] if flag else []))
+        assert result.exit_code == 0, result.output
+        assert f'"portable_math": {shown}' in result.output

@@ -57,8 +57,10 @@ def test_overrides_and_missing_file(tmp_path: Path) -> None:
 
 def test_portable_math_from_toml_and_in_the_header(tmp_path: Path) -> None:
     f = tmp_path / "p.toml"
-    f.write_text("portable_math = true\n")
+    f.write_text("portable_math = false\n")
     p = SimParams.from_toml(f)
-    assert p.portable_math is True and p.kernel_config().portable is True
-    assert p.to_dict()["portable_math"] is True
-    assert "portable_math" not in SimParams().to_dict()  # old headers stay as they were
+    assert p.portable_math is False and p.kernel_config().portable is False
+    # headers always say which maths ran (files before session 53 lack the key: native)
+    assert p.to_dict()["portable_math"] is False
+    assert SimParams().to_dict()["portable_math"] is True
+    assert SimParams().kernel_config().portable is True  # the default since session 53

@@ -163,10 +163,10 @@ def test_view_command_takes_portable_maths(monkeypatch) -> None:
     seen = []
     monkeypatch.setattr(ETLive, "__init__", lambda self, run: seen.append(run.sim_params) or None)
     monkeypatch.setattr("etswarm.cli.viewer_commands._write_video", lambda *a, **k: None)
-    for args in (["T", "--portable-math"], ["T"]):
+    for args in (["T", "--native-math"], ["T"]):
         result = CliRunner().invoke(view_command, [*args, "--video", "x.gif"])
         assert result.exit_code == 0, result.output
-    assert [p.portable_math for p in seen] == [True, False]
+    assert [p.portable_math for p in seen] == [False, True]  # portable by default
 
 
 def test_view_command_argument_errors() -> None:

@@ -81,7 +81,7 @@ class ETController:
         et: ETParams,
         ticks_per_s: int,
         nominal_motion: tuple[float, float, float, float] = NOMINAL_MOTION,
-        portable_math: bool = False,
+        portable_math: bool = True,
     ):
         """``nominal_motion``: the robot model the searchers' odometry assumes (see
         ``ETParams.pack``); ``portable_math``: their odometry and homing use

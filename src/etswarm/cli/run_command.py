@@ -91,10 +91,11 @@ from etswarm.algorithm.layout import LAYOUTS
               help="Ticks (0 or 1) between a broadcast and the control tick that reads it "
                    "(SimParams.message_delay_ticks). With 1, --control-threads also runs "
                    "the radio beside the control: faster, and other results than 0.")
-@click.option("--portable-math", is_flag=True, default=False,
+@click.option("--portable-math/--native-math", default=True, show_default=True,
               help="Compute sines, cosines, arctangents, logarithms and normal draws with "
                    "etswarm's own functions, so a seed gives the same run on every machine "
-                   "(SimParams.portable_math; other results than without it).")
+                   "(SimParams.portable_math), or with this machine's maths library "
+                   "(--native-math: a few per cent faster, the runs of sessions up to 52).")
 def run(shape: str, robots: int | None, seed: int, loss: float, noise: float, max_time: float,
         layout: str, release_interval: float | None, census: str, orbit: str, creep: bool,
         second_ring: bool, hole_memory: bool, pocket: bool, release_order: str,

@@ -102,9 +102,9 @@ DEFAULT_SPEED = {"et": 60.0, "randomwalk": 10.0}
     default=None,
     help="Write a video (.mp4/.gif) headless instead of opening a window.",
 )
-@click.option("--portable-math", is_flag=True, default=False,
-              help="ET: the robots' maths by etswarm's own functions, as 'etswarm run "
-                   "--portable-math' (the same run for a seed on every machine).")
+@click.option("--portable-math/--native-math", default=True, show_default=True,
+              help="ET: the robots' maths by etswarm's own functions (the same run for a "
+                   "seed on every machine) or by this machine's library, as in 'etswarm run'.")
 @window_options
 def view(
     shape: str | None,
@@ -191,7 +191,7 @@ def _et_live(  # type: ignore[no-untyped-def]
     release_interval: float | None,
     fit: bool,
     et_options: tuple[str, ...] = (),
-    portable_math: bool = False,
+    portable_math: bool = True,
 ):
     """The ET run of ``etswarm run`` with the same options, as a LiveRun."""
     from dataclasses import replace

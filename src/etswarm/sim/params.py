@@ -109,9 +109,10 @@ class SimParams:
     a tick's messages on one thread while the others run the controller, and the results
     do not depend on the thread count either. Not with ``threads`` > 1.
     ``portable_math``: compute sines, cosines, arctangents, logarithms and normal draws
-    with :mod:`etswarm.sim.fpmath`, which gives the same bits on every machine, instead
-    of the platform's maths library, whose code (and last bits) glibc picks by CPU. A seed
-    then gives the same run on any machine; its runs differ from the default's.
+    with :mod:`etswarm.sim.fpmath`, which gives the same bits on every machine (the
+    default since session 53), instead of the platform's maths library, whose code (and
+    last bits) glibc picks by CPU. With it a seed gives the same run on any machine;
+    ``False`` gives the runs of sessions up to 52 on the machine they ran on.
     """
 
     ticks_per_s: int = 31
@@ -135,7 +136,7 @@ class SimParams:
     threads: int = 1
     control_threads: int = 1
     message_delay_ticks: int = 0
-    portable_math: bool = False
+    portable_math: bool = True
     source: str = field(default="", compare=False, repr=False)
 
     def __post_init__(self) -> None:
@@ -205,15 +206,15 @@ class SimParams:
         return dataclasses.replace(self, **given)
 
     def to_dict(self) -> dict[str, Any]:
-        """The parameters as a plain dict (for headers and final-state JSON); ``threads``,
-        ``message_delay_ticks`` and ``portable_math`` only when they are not at their
-        defaults (they change results, but files of earlier runs stay as they were),
+        """The parameters as a plain dict (for headers and final-state JSON); ``threads``
+        and ``message_delay_ticks`` only when they are not at their defaults (they change
+        results, but files of earlier runs stay as they were), ``portable_math`` always
+        (files before session 53 lack it: their runs used the platform's maths),
         ``control_threads`` never (it changes only the speed)."""
         return {f.name: getattr(self, f.name) for f in fields(self)
                 if f.name not in ("source", "control_threads")
                 and not (f.name == "threads" and self.threads == 1)
-                and not (f.name == "message_delay_ticks" and self.message_delay_ticks == 0)
-                and not (f.name == "portable_math" and not self.portable_math)}
+                and not (f.name == "message_delay_ticks" and self.message_delay_ticks == 0)}
 
     @classmethod
     def from_mapping(cls, values: dict[str, Any], source: str = "") -> SimParams:
