@@ -11,8 +11,8 @@ DEMO_SHAPE = "T"
 DEMO_DAMAGE = ("split x=0 at=formed+30",)
 #: A seed whose cut leaves two halves and no stray robot on the cut line (most seeds
 #: leave one or two, which stay put as remnants too small to regrow), and whose `T`
-#: forms in a typical time (36 simulated min; seeds 0-11 with the defaults: 36-52 min
-#: but seed 1, 114).
+#: forms in a typical time (48 simulated min; seeds 0-11 with the defaults of session 53:
+#: 37-63 min, and only seed 8 cuts clean).
 DEMO_SEED = 8
 
 
