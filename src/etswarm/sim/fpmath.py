@@ -257,18 +257,14 @@ def _ziggurat_tables() -> tuple[np.ndarray, np.ndarray]:
 _ZIG_X, _ZIG_F = _ziggurat_tables()
 
 
-@njit(cache=True, inline="always")
-def normal(rng):  # type: ignore[no-untyped-def]
-    """One standard normal draw from ``rng`` (a numpy Generator): Marsaglia and Tsang's
-    ziggurat with 256 layers. One uniform picks the layer (its top 8 bits) and the point
-    in it (the other 45); 98.5 % of draws end there, the others test the curve with
-    :func:`exp` or draw the tail beyond r with :func:`log`."""
+@njit(cache=True)
+def _normal_beyond(rng, i, x):  # type: ignore[no-untyped-def]
+    """The rest of :func:`normal`'s draw when its first point ``x`` in layer ``i`` fell
+    outside the layer's rectangle: the curve test with :func:`exp`, or the tail beyond r
+    with :func:`log` for the base layer, and new tries until one is accepted. Kept out of
+    line, so that the 98.5 % of draws that end in the rectangle stay a few instructions
+    (inlined whole, the draw was too large for LLVM to inline into the radio)."""
     while True:
-        u = rng.random() * _ZIG_LAYERS
-        i = int(u)
-        x = (2.0 * (u - i) - 1.0) * _ZIG_X[i]
-        if abs(x) < _ZIG_X[i + 1]:
-            return x
         if i == 0:
             while True:
                 a = -log(1.0 - rng.random()) / _ZIG_R
@@ -278,6 +274,25 @@ def normal(rng):  # type: ignore[no-untyped-def]
         y = _ZIG_F[i] + rng.random() * (_ZIG_F[i + 1] - _ZIG_F[i])
         if y < exp(-0.5 * x * x):
             return x
+        u = rng.random() * _ZIG_LAYERS
+        i = int(u)
+        x = (2.0 * (u - i) - 1.0) * _ZIG_X[i]
+        if abs(x) < _ZIG_X[i + 1]:
+            return x
+
+
+@njit(cache=True, inline="always")
+def normal(rng):  # type: ignore[no-untyped-def]
+    """One standard normal draw from ``rng`` (a numpy Generator): Marsaglia and Tsang's
+    ziggurat with 256 layers. One uniform picks the layer (its top 8 bits) and the point
+    in it (the other 45); 98.5 % of draws end there, the others test the curve with
+    :func:`exp` or draw the tail beyond r with :func:`log` (:func:`_normal_beyond`)."""
+    u = rng.random() * _ZIG_LAYERS
+    i = int(u)
+    x = (2.0 * (u - i) - 1.0) * _ZIG_X[i]
+    if abs(x) < _ZIG_X[i + 1]:
+        return x
+    return _normal_beyond(rng, i, x)
 
 
 @njit(cache=True)
