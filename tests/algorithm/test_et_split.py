@@ -89,9 +89,10 @@ def test_control_threads_is_checked(capsys: pytest.CaptureFixture[str]) -> None:
 
 @pytest.mark.parametrize("delay", [[], ["--message-delay", "1"]])
 def test_cli_control_threads_gives_the_serial_json(delay: list[str]) -> None:
-    # (a triangle traced before session 35's thin-shape settings: it forms after 900 s)
+    # (a triangle traced before session 35's thin-shape settings and session 53's portable
+    # maths: it forms after 900 s)
     args = ["run", "triangle", "--seed", "4", "--max-time", "900", "--json",
-            "--et", "thin_depth=0", *delay]
+            "--et", "thin_depth=0", "--native-math", *delay]
     outputs = []
     for extra in (["--control-threads", "1"], ["--control-threads", "2"], []):
         result = CliRunner().invoke(cli, args + extra)
