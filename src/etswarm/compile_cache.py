@@ -82,7 +82,13 @@ def use_versioned_cache() -> Path:
     Must run before any etswarm module that defines cached functions is imported."""
     package_dir = Path(__file__).resolve().parent
     base_text = os.environ.get(BASE_VARIABLE) or os.environ.get("NUMBA_CACHE_DIR")
-    base = Path(base_text) if base_text else Path.home() / ".cache" / "etswarm" / "numba"
+    if base_text:
+        base = Path(base_text)
+    else:
+        try:
+            base = Path.home() / ".cache" / "etswarm" / "numba"
+        except RuntimeError:  # no home folder to be found
+            base = Path(tempfile.gettempdir()) / "etswarm-numba"
     if not _writable(base):
         base = Path(tempfile.gettempdir()) / f"etswarm-numba-{getattr(os, 'getuid', lambda: 0)()}"
     folder = base / source_hash(package_dir)
