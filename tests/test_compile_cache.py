@@ -4,12 +4,13 @@
 from __future__ import annotations
 
 import os
+import re
 import subprocess
 import sys
 import time
 from pathlib import Path
 
-from etswarm.compile_cache import STALE_DAYS, source_hash
+from etswarm.compile_cache import STALE_DAYS, compiled_sources, source_hash
 
 
 def test_the_hash_follows_every_source_file(tmp_path: Path) -> None:
@@ -17,14 +18,31 @@ def test_the_hash_follows_every_source_file(tmp_path: Path) -> None:
     (pkg / "sub").mkdir(parents=True)
     (pkg / "a.py").write_text("x = 1\n")
     (pkg / "sub" / "b.py").write_text("y = 2\n")
-    first = source_hash(pkg)
-    assert source_hash(pkg) == first
+
+    def key() -> str:
+        return source_hash(sorted(pkg.rglob("*.py")), pkg)
+
+    first = key()
+    assert key() == first
     (pkg / "sub" / "b.py").write_text("y = 3\n")  # a callee's file, not the caller's
-    assert source_hash(pkg) != first
+    assert key() != first
     (pkg / "sub" / "b.py").write_text("y = 2\n")
-    assert source_hash(pkg) == first
+    assert key() == first
     (pkg / "sub" / "c.py").write_text("")
-    assert source_hash(pkg) != first
+    assert key() != first
+
+
+def test_the_compiled_sources_are_those_numba_may_read() -> None:
+    import etswarm
+
+    root = Path(etswarm.__file__).parent
+    names = {str(p.relative_to(root)) for p in compiled_sources(root)}
+    assert {"sim/radio.py", "sim/fpmath.py", "algorithm/search.py", "shapes/lattice.py",
+            "sim/controllers/randomwalk.py", "compile_cache.py"} <= names
+    uses_numba = re.compile(r"^\s*(from numba|import numba)", re.MULTILINE)
+    for path in root.rglob("*.py"):  # every module that uses numba is among them
+        if uses_numba.search(path.read_text()):
+            assert str(path.relative_to(root)) in names, path
 
 
 def test_a_process_compiles_into_its_version_folder_and_old_ones_go(tmp_path: Path) -> None:
@@ -41,6 +59,7 @@ def test_a_process_compiles_into_its_version_folder_and_old_ones_go(tmp_path: Pa
               "print(os.environ['NUMBA_CACHE_DIR']); print(c.CACHE_DIR)")
     out = subprocess.run([sys.executable, "-c", script], env=env, capture_output=True,
                          text=True, check=True).stdout.split()
-    want = str(base / source_hash(Path(etswarm.__file__).parent))
+    root = Path(etswarm.__file__).parent
+    want = str(base / source_hash(compiled_sources(root), root))
     assert out == [want, want]  # the variable children inherit, and numba's own setting
     assert not old.exists() and recent.exists()

@@ -5,8 +5,9 @@ the files of the functions that one calls. Session 53 found ``sim.motion.move_ph
 loaded from a cache written when ``sim.fpmath`` still drew normals by the polar method:
 ``motion.py`` had not changed since, so numba took the old machine code, and the same seed
 gave another run than in a fresh checkout. So etswarm points numba's cache at
-``BASE/<hash>``, where the hash covers every ``.py`` file of the package and the numba,
-numpy and Python versions: an edit or an upgrade compiles everything afresh, once.
+``BASE/<hash>``, where the hash covers every ``.py`` file of the packages with compiled
+code (:data:`COMPILED_PACKAGES`) and the numba, numpy and Python versions: an edit there
+or an upgrade compiles everything afresh, once.
 
 BASE is ``$NUMBA_CACHE_DIR`` when the user set it, else ``~/.cache/etswarm/numba`` (a
 temporary folder when that cannot be written). The versioned folder is passed on to
@@ -29,13 +30,27 @@ from pathlib import Path
 #: Days after which the cache folder of another version of the sources is removed.
 STALE_DAYS = 14
 
+#: The subpackages with compiled code (``@njit``) or the constants it reads; the others
+#: (the CLI, viewer, experiments, measures, damage) run as plain Python, so editing them
+#: keeps the compiled functions.
+COMPILED_PACKAGES = ("sim", "algorithm", "shapes")
+
 #: Environment variable that carries BASE to child processes.
 BASE_VARIABLE = "ETSWARM_NUMBA_BASE"
 
 
-def source_hash(package_dir: Path) -> str:
-    """SHA-256 (first 16 hex digits) of every ``.py`` file under ``package_dir`` (paths
-    and bytes, in path order) and of the numba, numpy and Python versions."""
+def compiled_sources(package_dir: Path) -> list[Path]:
+    """The ``.py`` files whose code or constants numba may compile: the package's own
+    top-level modules and every module of :data:`COMPILED_PACKAGES`, in path order."""
+    files = list(package_dir.glob("*.py"))
+    for name in COMPILED_PACKAGES:
+        files.extend((package_dir / name).rglob("*.py"))
+    return sorted(files)
+
+
+def source_hash(files: list[Path], root: Path) -> str:
+    """SHA-256 (first 16 hex digits) of ``files`` (their paths from ``root`` and their
+    bytes, in the order given) and of the numba, numpy and Python versions."""
     digest = hashlib.sha256()
     for name in ("numba", "numpy"):
         try:
@@ -43,8 +58,8 @@ def source_hash(package_dir: Path) -> str:
         except metadata.PackageNotFoundError:
             digest.update(f"{name} none\n".encode())
     digest.update(sys.version.encode())
-    for path in sorted(package_dir.rglob("*.py")):
-        digest.update(str(path.relative_to(package_dir)).encode())
+    for path in files:
+        digest.update(str(path.relative_to(root)).encode())
         digest.update(path.read_bytes())
     return digest.hexdigest()[:16]
 
@@ -91,7 +106,7 @@ def use_versioned_cache() -> Path:
             base = Path(tempfile.gettempdir()) / "etswarm-numba"
     if not _writable(base):
         base = Path(tempfile.gettempdir()) / f"etswarm-numba-{getattr(os, 'getuid', lambda: 0)()}"
-    folder = base / source_hash(package_dir)
+    folder = base / source_hash(compiled_sources(package_dir), package_dir)
     if not _writable(folder):
         folder = Path(tempfile.mkdtemp(prefix="etswarm-numba-"))
     else:
