@@ -44,7 +44,7 @@ from etswarm.algorithm.params import (
     F_ODO_TURN,
     F_PORTABLE_MATH,
 )
-from etswarm.sim.fpmath import atan2_as, sin_cos_as
+from etswarm.sim.fpmath import atan2_as, hypot_as, sin_cos_as
 
 #: Odometric positions are kept in units of 1 / this many mm ...
 ODO_PER_MM = 1024.0
@@ -188,12 +188,12 @@ def homing_motion(i, ri, ahead, portable):  # type: ignore[no-untyped-def]
     if ahead:
         hx = ri[i, R_HOME_X] / ODO_PER_MM
         hy = ri[i, R_HOME_Y] / ODO_PER_MM
-        away = math.hypot(hx, hy)
+        away = hypot_as(hx, hy, portable)
         if away >= AHEAD_MIN_MM:
             shift = AHEAD_SHARE * (path % spiral_path())
             dx -= shift * hx / away
             dy -= shift * hy / away
-    rho = math.hypot(dx, dy)
+    rho = hypot_as(dx, dy, portable)
     outward = atan2_as(dy, dx, portable)
     error = (rho - ring_radius(path)) / RING_BAND_MM
     inward = 0.5 * math.pi * max(-1.0, min(1.0, error))

@@ -67,6 +67,14 @@ def _unit(angle: float, portable: bool) -> np.ndarray:
     return np.array([c, s])
 
 
+def lengths(v: np.ndarray, portable: bool) -> np.ndarray:
+    """Length of each row of ``v`` ((K, 2) mm, any K): by IEEE arithmetic alone when
+    ``portable`` (the same bits everywhere, as ``fpmath.hypot``), else numpy's ``hypot``."""
+    if not portable:
+        return np.hypot(v[:, 0], v[:, 1])
+    return np.sqrt(v[:, 0] * v[:, 0] + v[:, 1] * v[:, 1])
+
+
 def arctan2(y, x, portable: bool):  # type: ignore[no-untyped-def]
     """``np.arctan2(y, x)`` of floats or 1-D arrays, by :mod:`etswarm.sim.fpmath` when
     ``portable``."""
@@ -83,7 +91,8 @@ def _queue_points(head: np.ndarray, u: np.ndarray, count: int) -> np.ndarray:
     return head[None, :] + k * REPOSITORY_SPACING_MM * u[None, :]
 
 
-def _cluster_points(head: np.ndarray, u: np.ndarray, count: int, keep_out) -> np.ndarray:
+def _cluster_points(head: np.ndarray, u: np.ndarray, count: int, keep_out,
+                    portable: bool) -> np.ndarray:
     """``count`` hexagonal-lattice points grown outward from ``head`` (nearest first)."""
     radius = int(np.ceil(np.sqrt(count))) + 3
     s = REPOSITORY_SPACING_MM
@@ -98,7 +107,7 @@ def _cluster_points(head: np.ndarray, u: np.ndarray, count: int, keep_out) -> np
     ahead = b >= 0
     clear = keep_out(pts)
     pts = pts[ahead & clear]
-    dist = np.hypot(*(pts - head[None, :]).T)
+    dist = lengths(pts - head[None, :], portable)
     order = np.lexsort((pts[:, 1], pts[:, 0], np.round(dist, 6)))
     return pts[order[:count]]
 
@@ -166,7 +175,7 @@ def plan_layout(
                 if not np.all(keep_out(rep)):
                     continue
             else:
-                rep = _cluster_points(head, u, n_rep, keep_out)
+                rep = _cluster_points(head, u, n_rep, keep_out, portable)
                 if len(rep) < n_rep:
                     continue
             return _assemble(rep, seed_xy, seed_tags, portable)
@@ -180,7 +189,7 @@ def _assemble(
 ) -> Layout:
     """Number the robots: repository farthest-first, then the three seeds."""
     s_centre = seed_xy.mean(axis=0)
-    far = np.hypot(*(rep - s_centre[None, :]).T) if len(rep) else np.zeros(0)
+    far = lengths(rep - s_centre[None, :], portable) if len(rep) else np.zeros(0)
     rep = rep[np.argsort(-far, kind="stable")]
     pos = np.vstack([rep, seed_xy]) if len(rep) else seed_xy.copy()
     rel = pos - s_centre[None, :]

@@ -45,8 +45,6 @@ Measured over 13 shapes, seeds 30-49 (4 h limit; the defaults before formed 241 
 
 from __future__ import annotations
 
-import math
-
 from numba import njit
 
 from etswarm.algorithm.kernel_util import DIR_X, DIR_Y, direction_index, gene_at, is_placed
@@ -68,9 +66,11 @@ from etswarm.algorithm.params import (
     C_TICKS_NB_FRESH,
     F_CAPTURE_MOUTH,
     F_CAPTURE_PINCH,
+    F_PORTABLE_MATH,
     F_SPACING,
 )
 from etswarm.algorithm.site_memory import is_held, site_taken
+from etswarm.sim.fpmath import hypot_as
 
 #: A free neighbour site counts when this many of its neighbour sites are held once the
 #: searcher takes its site.
@@ -157,7 +157,7 @@ def too_far_off(i, cx, cy, since, nb, nb_dist, ci, cf, limit):  # type: ignore[n
     x0 = site_x(cx, cy, d)
     y0 = site_y(cy, d)
     ok, x, y = locate(i, since, x0, y0, nb, nb_dist, d)
-    return ok and math.hypot(x - x0, y - y0) >= limit
+    return ok and hypot_as(x - x0, y - y0, cf[F_PORTABLE_MATH] > 0.0) >= limit
 
 
 @njit
