@@ -95,7 +95,7 @@ from etswarm.algorithm.layout import LAYOUTS
               help="Compute sines, cosines, arctangents, logarithms and normal draws with "
                    "etswarm's own functions, so a seed gives the same run on every machine "
                    "(SimParams.portable_math), or with this machine's maths library "
-                   "(--native-math: a few per cent faster, the runs of sessions up to 52).")
+                   "(--native-math: the runs of sessions up to 52, which differ by machine).")
 def run(shape: str, robots: int | None, seed: int, loss: float, noise: float, max_time: float,
         layout: str, release_interval: float | None, census: str, orbit: str, creep: bool,
         second_ring: bool, hole_memory: bool, pocket: bool, release_order: str,
