@@ -257,6 +257,16 @@ def _ziggurat_tables() -> tuple[np.ndarray, np.ndarray]:
 _ZIG_X, _ZIG_F = _ziggurat_tables()
 
 
+@njit(cache=True, inline="always")
+def _ziggurat_point(rng):  # type: ignore[no-untyped-def]
+    """One try of the ziggurat: a uniform picks layer ``i`` (its top 8 bits) and the point
+    ``x`` in it (the rest); ``inside`` when x lies in the layer's rectangle (accepted)."""
+    u = rng.random() * _ZIG_LAYERS
+    i = int(u)
+    x = (2.0 * (u - i) - 1.0) * _ZIG_X[i]
+    return i, x, abs(x) < _ZIG_X[i + 1]
+
+
 @njit(cache=True)
 def _normal_beyond(rng, i, x):  # type: ignore[no-untyped-def]
     """The rest of :func:`normal`'s draw when its first point ``x`` in layer ``i`` fell
@@ -274,10 +284,8 @@ def _normal_beyond(rng, i, x):  # type: ignore[no-untyped-def]
         y = _ZIG_F[i] + rng.random() * (_ZIG_F[i + 1] - _ZIG_F[i])
         if y < exp(-0.5 * x * x):
             return x
-        u = rng.random() * _ZIG_LAYERS
-        i = int(u)
-        x = (2.0 * (u - i) - 1.0) * _ZIG_X[i]
-        if abs(x) < _ZIG_X[i + 1]:
+        i, x, inside = _ziggurat_point(rng)
+        if inside:
             return x
 
 
@@ -287,10 +295,8 @@ def normal(rng):  # type: ignore[no-untyped-def]
     ziggurat with 256 layers. One uniform picks the layer (its top 8 bits) and the point
     in it (the other 45); 98.5 % of draws end there, the others test the curve with
     :func:`exp` or draw the tail beyond r with :func:`log` (:func:`_normal_beyond`)."""
-    u = rng.random() * _ZIG_LAYERS
-    i = int(u)
-    x = (2.0 * (u - i) - 1.0) * _ZIG_X[i]
-    if abs(x) < _ZIG_X[i + 1]:
+    i, x, inside = _ziggurat_point(rng)
+    if inside:
         return x
     return _normal_beyond(rng, i, x)
 
