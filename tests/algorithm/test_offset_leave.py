@@ -33,7 +33,7 @@ from etswarm.algorithm.run import ETRun, RunConfig
 from etswarm.algorithm.states import State
 from etswarm.errors import EtswarmError
 
-from .traced import NATIVE_MATHS
+from .traced import NATIVE_MATHS, SESSION_53_REGROWTH
 
 TAG = (2, 1)
 
@@ -80,9 +80,12 @@ def test_a_robot_nearer_its_site_not_refining_or_in_a_first_formation_stays() ->
 
 
 def run_kill(seed: int, **options: float) -> dict:
-    """Summary of `T` `kill random=0.1` with ``options`` set, over the default 4 h."""
+    """Summary of `T` `kill random=0.1` with ``options`` set, over the default 4 h, with
+    session 51's regrowth (the two-neighbour window after damage, since session 54,
+    re-forms both seeds without any robot leaving)."""
     run = ETRun(RunConfig(shape="T", seed=seed, damage=("kill random=0.1",),
-                          et=ETParams(**options)), sim_params=NATIVE_MATHS)
+                          et=ETParams(**{**SESSION_53_REGROWTH, **options})),
+                sim_params=NATIVE_MATHS)
     return run.run()
 
 

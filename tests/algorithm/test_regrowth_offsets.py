@@ -64,15 +64,16 @@ def test_two_neighbour_sites_widen_only_after_the_set_time(epoch: int) -> None:
     _, cf = ETParams(**{name: 600.0}).pack(31, 0, 0)
     assert wide_minimum(600 * 31 - 1, epoch, cf) == WIDE_MIN_NEIGHBOURS
     assert wide_minimum(600 * 31, epoch, cf) == 2
-    _, off = ETParams(two_neighbour_widen_s=0.0).pack(31, 0, 0)
+    _, off = ETParams(**{name: 0.0}).pack(31, 0, 0)
     assert wide_minimum(10**9, epoch, off) == WIDE_MIN_NEIGHBOURS
 
 
-def test_by_default_only_the_first_formation_widens_at_two_neighbours() -> None:
+def test_by_default_both_growths_widen_at_two_neighbours_after_half_an_hour() -> None:
     _, cf = ETParams().pack(31, 0, 0)
     assert cf[F_TWO_WIDEN_TICKS] == 1800 * 31
-    assert wide_minimum(1800 * 31, 0, cf) == 2
-    assert wide_minimum(10**9, 1, cf) == WIDE_MIN_NEIGHBOURS
+    for growth in (0, 1):
+        assert wide_minimum(1800 * 31 - 1, growth, cf) == WIDE_MIN_NEIGHBOURS
+        assert wide_minimum(1800 * 31, growth, cf) == 2
 
 
 @pytest.mark.parametrize(

@@ -84,3 +84,26 @@ def test_a_tip_with_two_neighbours_gets_the_wide_window_late_in_the_first_format
     assert not never["formed"]
     (group,) = never["components"]
     assert group["free_tags"] == [[1, 5]] and group["searching"] == 1
+
+
+def test_a_regrowing_leg_gets_the_wide_window_at_two_neighbours_after_half_an_hour() -> None:
+    from etswarm.algorithm.run import ETRun, RunConfig
+
+    # H split y=mid seed 13 (sessions 53-54): the cut leaves the crossbar's half and two
+    # legs. One leg's last free sites, (0, 1) and (1, 1), have two placed neighbours each
+    # heard by the searchers, one of them standing 13 mm into (0, 1); with the pocket rule
+    # alone its two searchers went round the leg for the last three hours.
+    def run(**options: float) -> dict:
+        config = RunConfig(shape="H", seed=13, damage=("split y=mid",), max_time_s=4 * 3600,
+                           et=ETParams(**options))
+        return ETRun(config).run()
+
+    default = run()
+    assert default["formed"] and default["duplicate_tags"] == []
+    remnants = [c for c in default["components"] if c["robots"] >= 6]
+    assert len(remnants) == 3
+    assert all(c["formed"] and c["jaccard"] == 1.0 for c in remnants)
+    assert max(c["time_to_stable_s"] for c in remnants) > 1800  # the late window did it
+    never = run(regrowth_two_neighbour_widen_s=0.0)
+    stalled = [c for c in never["components"] if c["robots"] >= 6 and not c["formed"]]
+    assert [(c["free_tags"], c["searching"]) for c in stalled] == [([[0, 1], [1, 1]], 2)]

@@ -27,10 +27,15 @@ SESSION_26_FORMATION = {"two_neighbour_widen_s": 0.0, **SESSION_34_FORMATION}
 #: with these.
 SESSION_19_WIDENING = {"widen_s": 1200.0, "capture_pinch_refusals": 2, **SESSION_26_FORMATION}
 
+#: Until session 54 a searcher of a regenerated target got the wide window only at sites
+#: of three or more placed neighbours, however long it had been at the shape; regrowths
+#: traced before then run as described with this.
+SESSION_53_REGROWTH = {"regrowth_two_neighbour_widen_s": 0.0}
+
 #: Until session 50 a lost searcher pivoted straight back into a sibling remnant's robots,
 #: and only a robot whose tag is no site of the searcher's target was foreign to it;
 #: regrowths traced before then run as described with this.
-SESSION_49_REGROWTH = {"lost_escape_s": 0.0, "signed_foreign": "off"}
+SESSION_49_REGROWTH = {"lost_escape_s": 0.0, "signed_foreign": "off", **SESSION_53_REGROWTH}
 
 #: Until session 34 a Leader kept the scaled shape in the original's orientation;
 #: regrowths traced before then place and branch as described with this.

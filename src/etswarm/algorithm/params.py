@@ -538,9 +538,11 @@ class ETParams:
     #: only at one with three or more; 0: never. First formations, 13 shapes, seeds 30-89:
     #: 1800 formed 773 of 780 against 763 with 0 (docs/algorithm.md, session 27).
     two_neighbour_widen_s: float = 1800.0
-    #: ... and after damage, while it searches for a regenerated target: with 1800 there
-    #: too, 320 of 352 damage runs re-formed against 330 of 356 (seeds 0-19).
-    regrowth_two_neighbour_widen_s: float = 0.0
+    #: ... and after damage, while it searches for a regenerated target. Session 27
+    #: measured 1800 worse there (320 of 352 damage runs re-formed against 330 of 356);
+    #: with session 54's rules it re-formed 1004 of 1072 runs of the issue-5 suite (seeds
+    #: 0-59) against 970 with 0 (docs/algorithm.md, "Session 54").
+    regrowth_two_neighbour_widen_s: float = 1800.0
     #: A searcher that hears a placed robot whose tag is not a site of its own target
     #: (a robot of a sibling remnant's shape, cut from the same lattice, or one that has
     #: not yet adopted the new target): "avoid" keeps clear of it as of any obstacle and
