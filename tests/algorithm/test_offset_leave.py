@@ -81,8 +81,8 @@ def test_a_robot_nearer_its_site_not_refining_or_in_a_first_formation_stays() ->
 
 def run_kill(seed: int, **options: float) -> dict:
     """Summary of `T` `kill random=0.1` with ``options`` set, over the default 4 h, with
-    session 51's regrowth (the two-neighbour window after damage, since session 54,
-    re-forms both seeds without any robot leaving)."""
+    the pocket rule alone after damage (``SESSION_53_REGROWTH``): since session 54 the
+    two-neighbour window re-forms both seeds without any robot leaving."""
     run = ETRun(RunConfig(shape="T", seed=seed, damage=("kill random=0.1",),
                           et=ETParams(**{**SESSION_53_REGROWTH, **options})),
                 sim_params=NATIVE_MATHS)
