@@ -39,6 +39,7 @@ from etswarm.algorithm.search import NO_SITE, find_site, foreign, window_centre
 from etswarm.algorithm.states import State
 from etswarm.errors import EtswarmError
 
+from .find_site_args import ANYWHERE
 from .test_pair_side import GENE_X0, WINDOW, pair_world
 from .traced import NATIVE_MATHS, SESSION_26_FORMATION, SESSION_31_PLACEMENT
 
@@ -61,7 +62,8 @@ def site_from_pair(et: ETParams) -> tuple[bool, int, int]:
     nb, nb_dist, gene_flag, ci, cf = pair_off_the_target(et)
     held = np.zeros((5, 5), dtype=np.uint8)
     found, x, y, _ = find_site(0, 10, 0, True, 1, -1, 0, nb, nb_dist, gene_flag, ci, cf, 1.0,
-                               3, held, *WINDOW, window_centre(cf, 0), 1.0, NO_SITE, NO_SITE)
+                               3, held, *WINDOW, window_centre(cf, 0), 1.0, NO_SITE, NO_SITE,
+                               *ANYWHERE)
     return bool(found), int(x), int(y)
 
 
@@ -116,7 +118,8 @@ def site_beside_a_foreign_robot(et: ETParams) -> tuple[bool, int, int]:
     nb_dist[0, :3] = (40.0, 40.6, 45.0)
     held = np.zeros((5, 5), dtype=np.uint8)
     found, x, y, _ = find_site(0, 10, 0, True, 1, -1, 0, nb, nb_dist, gene_flag, ci, cf, 1.0,
-                               3, held, *WINDOW, window_centre(cf, 0), 1.0, NO_SITE, NO_SITE)
+                               3, held, *WINDOW, window_centre(cf, 0), 1.0, NO_SITE, NO_SITE,
+                               *ANYWHERE)
     return bool(found), int(x), int(y)
 
 

@@ -42,6 +42,8 @@ from etswarm.algorithm.search import (
 from etswarm.algorithm.states import State
 from etswarm.shapes.lattice import neighbour_counts
 
+from .find_site_args import ANYWHERE
+
 #: Tags -3..3 in both axes for the gene grids; the memory window of held sites.
 GENE_X0 = -3
 WINDOW = (-2, -2)
@@ -104,13 +106,13 @@ def test_the_site_is_on_the_side_of_the_robot_it_came_from() -> None:
     gene_flag = gene_flag.astype(np.int64)  # as test_search_rules: one compilation for both
     # Nearest is A (robot 1); it came from B (robot 2): on the left of B->A, (0, -1).
     found, x, y, _ = find_site(0, 10, 0, True, 1, 2, 0, nb, nb_dist, gene_flag, ci, cf, 1.0, 3,
-                               *memory, window_centre(cf, 0), 1.0, NO_SITE, NO_SITE)
+                               *memory, window_centre(cf, 0), 1.0, NO_SITE, NO_SITE, *ANYWHERE)
     assert (found, x, y) == (True, 0, -1)
     # It came from A, or from elsewhere with A passed first: on the left of A->B, (1, 1).
     for came in (1, 5, -1):
         found, x, y, _ = find_site(0, 10, 0, True, 1, came, 0, nb, nb_dist, gene_flag, ci, cf,
                                    1.0, 3, *memory, window_centre(cf, 0), 1.0, NO_SITE,
-                                   NO_SITE)
+                                   NO_SITE, *ANYWHERE)
         assert (found, x, y) == (True, 1, 1)
 
 

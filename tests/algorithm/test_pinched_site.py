@@ -19,6 +19,8 @@ from etswarm.algorithm.params import ETParams
 from etswarm.algorithm.search import NO_SITE, find_site, window_centre
 from etswarm.algorithm.states import State
 
+from .find_site_args import ANYWHERE
+
 #: An empty memory of held sites (window, origin) for ``find_site``: nothing remembered.
 NO_MEMORY = (np.zeros((9, 9), dtype=np.uint8), -4, -4)
 
@@ -49,7 +51,7 @@ def search_at(inner_mm: float, widen_max: float, tol_scale: float, wide_min: int
     gene, ci, cf, nb, nb_dist = pinched_table(inner_mm, widen_max)
     found, x, y, _ = find_site(
         0, 10, 0, True, -1, -1, 0, nb, nb_dist, gene, ci, cf, tol_scale, wide_min,
-        *NO_MEMORY, window_centre(cf, 0), 1.0, NO_SITE, NO_SITE,
+        *NO_MEMORY, window_centre(cf, 0), 1.0, NO_SITE, NO_SITE, *ANYWHERE,
     )
     return found, (x, y)
 

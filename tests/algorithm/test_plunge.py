@@ -33,7 +33,7 @@ from etswarm.algorithm.states import State
 from etswarm.measures.formation import duplicate_tags, min_pair_distance
 from etswarm.sim.world import FORWARD, LEFT, RIGHT
 
-from .traced import NATIVE_MATHS
+from .traced import NATIVE_MATHS, SESSION_54_REGROWTH
 
 TICKS_PER_S = 31
 TICK = 200_000
@@ -133,7 +133,7 @@ def test_a_plunging_searcher_keeps_nearer_to_the_group() -> None:
 
 def regrowth(plunge_s: float) -> dict:
     config = RunConfig(shape="starfish", seed=1, damage=("split y=mid",), max_time_s=4 * 3600,
-                       et=ETParams(regrowth_plunge_s=plunge_s))
+                       et=ETParams(regrowth_plunge_s=plunge_s, **SESSION_54_REGROWTH))
     summary = ETRun(config, sim_params=NATIVE_MATHS).run()
     assert summary["duplicate_tags"] == []
     return summary

@@ -11,6 +11,8 @@ from etswarm.algorithm.pocket import LOCATED_TOL_MM, located_score, pocket_site
 from etswarm.algorithm.search import NO_SITE, find_site, window_centre
 from etswarm.algorithm.states import State
 
+from .find_site_args import ANYWHERE
+
 TICK = 100
 ORIGIN = -5  # memory window: tags -5..5
 SIZE = 11
@@ -41,7 +43,8 @@ def test_a_searcher_inside_a_stretched_ring_takes_its_middle() -> None:
     ring = {(0, 1): 55.0, (1, 1): 60.0, (1, 0): 58.0, (0, -1): 62.0}
     gene, ci, cf, nb, nb_dist, held = pocket_world(ring)
     found, *_ = find_site(0, TICK, TICK - 10, False, -1, -1, 0, nb, nb_dist, gene, ci, cf, 3.0, 3,
-                          held, ORIGIN, ORIGIN, window_centre(cf, 0), 1.0, NO_SITE, NO_SITE)
+                          held, ORIGIN, ORIGIN, window_centre(cf, 0), 1.0, NO_SITE, NO_SITE,
+                          *ANYWHERE)
     assert not found
     found, x, y, ts = pocket_site(0, TICK, TICK - 10, nb, nb_dist, gene, ci, cf, held, ORIGIN,
                                   ORIGIN)

@@ -24,7 +24,7 @@ from etswarm.algorithm.run import ETRun, RunConfig
 from etswarm.algorithm.states import State
 from etswarm.measures.formation import components
 
-from .traced import NATIVE_MATHS
+from .traced import NATIVE_MATHS, SESSION_54_REGROWTH
 
 TAG = (2, 1)
 
@@ -82,14 +82,14 @@ def test_a_tip_robot_shoved_out_of_range_goes_back_to_its_site() -> None:
     # H split x=mid seed 0: searchers going round the right remnant shove robot 31, on
     # its tip (4, 4), 80 mm from its nearest neighbour; two false alarms excuse its
     # missing neighbours. Without the rule every robot ends Stable, robot 31 alone.
-    plain = run_cut(ETParams(isolated_rejoin_s=0))
+    plain = run_cut(ETParams(isolated_rejoin_s=0, **SESSION_54_REGROWTH))
     live = plain.world.present & plain.world.alive
     groups = components(plain.world.pos, live, 70.0)
     assert sorted(len(g) for g in groups) == [1, 23, 26]
     assert np.all(plain.controller.states[live] == State.STABLE)
     assert not plain.summary()["components"][1]["formed"]
     # With it the robot leaves, comes back round the remnant and takes (4, 4) again.
-    run = run_cut(ETParams())
+    run = run_cut(ETParams(**SESSION_54_REGROWTH))
     summary = run.summary()
     assert [c["robots"] for c in summary["components"]] == [26, 24]
     assert all(c["formed"] and c["jaccard"] == 1.0 for c in summary["components"])

@@ -12,6 +12,8 @@ from etswarm.algorithm.search import NO_SITE, closes_a_hole, in_window, open_fro
 from etswarm.algorithm.states import State
 from etswarm.errors import EtswarmError
 
+from .find_site_args import ANYWHERE
+
 RING = [(0, 1), (1, 1), (1, 0), (0, -1), (-1, -1), (-1, 0)]
 #: An empty memory of held sites (window, origin) for ``find_site``: nothing remembered.
 NO_MEMORY = (np.zeros((9, 9), dtype=np.uint8), -4, -4)
@@ -165,7 +167,7 @@ def test_second_ring_pairs_find_the_site_between_them() -> None:
         gene, ci, cf, nb, nb_dist = two_reference_table(option, holder_heard=False)
         found, x, y, _ = find_site(
             0, 10, 0, False, -1, -1, 0, nb, nb_dist, gene, ci, cf, 1.0, 3, *NO_MEMORY,
-            window_centre(cf, 0), 1.0, NO_SITE, NO_SITE,
+            window_centre(cf, 0), 1.0, NO_SITE, NO_SITE, *ANYWHERE,
         )
         assert (found, x, y) == expected
 
@@ -179,7 +181,7 @@ def test_a_site_whose_reported_neighbour_is_not_heard_is_refused_on_settling() -
     assert reported_but_unheard(0, 0, 1, 0, nb, gene, ci)
     found, *_ = find_site(
         0, 10, 0, True, -1, -1, 0, nb, nb_dist, gene, ci, cf, 1.0, 3, *NO_MEMORY,
-            window_centre(cf, 0), 1.0, NO_SITE, NO_SITE,
+            window_centre(cf, 0), 1.0, NO_SITE, NO_SITE, *ANYWHERE,
     )
     assert not found
     # Once the holder of (1, 1) is heard too, the site is confirmed.
@@ -187,6 +189,6 @@ def test_a_site_whose_reported_neighbour_is_not_heard_is_refused_on_settling() -
     assert not reported_but_unheard(0, 0, 1, 0, nb, gene, ci)
     found, x, y, _ = find_site(
         0, 10, 0, True, -1, -1, 0, nb, nb_dist, gene, ci, cf, 1.0, 3, *NO_MEMORY,
-            window_centre(cf, 0), 1.0, NO_SITE, NO_SITE,
+            window_centre(cf, 0), 1.0, NO_SITE, NO_SITE, *ANYWHERE,
     )
     assert (found, x, y) == (True, 0, 1)

@@ -32,6 +32,8 @@ from etswarm.algorithm.search import NO_SITE, begin_search, find_site, window_ce
 from etswarm.algorithm.states import State
 from etswarm.errors import EtswarmError
 
+from .find_site_args import ANYWHERE
+
 TICK = 100_000
 #: An empty memory of held sites (window, origin) for ``find_site``.
 NO_MEMORY = (np.zeros((9, 9), dtype=np.uint8), -4, -4)
@@ -57,7 +59,7 @@ def site_between(dist_mm: float, plain_scale: float) -> bool:
         nb_dist[0, slot] = dist
     found, x, y, _ = find_site(
         0, 10, 0, True, -1, -1, 0, nb, nb_dist, gene, ci, cf, 1.0, 3, *NO_MEMORY,
-        window_centre(cf, 0), plain_scale, NO_SITE, NO_SITE,
+        window_centre(cf, 0), plain_scale, NO_SITE, NO_SITE, *ANYWHERE,
     )
     return bool(found) and (x, y) == (1, 1)
 

@@ -27,10 +27,15 @@ SESSION_26_FORMATION = {"two_neighbour_widen_s": 0.0, **SESSION_34_FORMATION}
 #: with these.
 SESSION_19_WIDENING = {"widen_s": 1200.0, "capture_pinch_refusals": 2, **SESSION_26_FORMATION}
 
+#: Until session 55 a searcher released where a regenerated target left it out did not
+#: know it stood by its former site, and took sites across a pair from it; regrowths
+#: traced before then run as described with this.
+SESSION_54_REGROWTH = {"former_site_slack_mm": 0.0}
+
 #: Until session 54 a searcher of a regenerated target got the wide window only at sites
 #: of three or more placed neighbours, however long it had been at the shape; regrowths
 #: traced before then run as described with this.
-SESSION_53_REGROWTH = {"regrowth_two_neighbour_widen_s": 0.0}
+SESSION_53_REGROWTH = {"regrowth_two_neighbour_widen_s": 0.0, **SESSION_54_REGROWTH}
 
 #: Until session 50 a lost searcher pivoted straight back into a sibling remnant's robots,
 #: and only a robot whose tag is no site of the searcher's target was foreign to it;

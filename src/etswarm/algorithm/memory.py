@@ -232,7 +232,15 @@ R_PLUNGE_UNTIL = R_WATCH_T1 + 1
 #: A lost searcher that had to turn away from another shape's robot edge-follows that
 #: shape's robots until this tick (``ETParams.lost_escape_s``).
 R_ESCAPE_UNTIL = R_PLUNGE_UNTIL + 1
-R_FIELDS = R_ESCAPE_UNTIL + 1
+#: The site a placed robot held when a regenerated target left it out, so that it waits
+#: Queued where it stood; the searcher it becomes knows, by odometry, how far it has gone
+#: from it (``former_site``). ``NO_SITE`` for none.
+R_FORMER_X = R_ESCAPE_UNTIL + 1
+R_FORMER_Y = R_FORMER_X + 1
+R_FIELDS = R_FORMER_Y + 1
+
+#: No site (a tag field that holds none: ``R_FORMER_X``, ``search.find_site``'s left site).
+NO_SITE = -(1 << 40)
 
 PHASE_NORMAL = 0
 PHASE_ELECTING = 1
@@ -309,6 +317,8 @@ def allocate(n_robots: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     ri[:, R_WATCH_ID1] = -1
     ri[:, R_WATCH_T0] = -(1 << 40)
     ri[:, R_WATCH_T1] = -(1 << 40)
+    ri[:, R_FORMER_X] = NO_SITE
+    ri[:, R_FORMER_Y] = NO_SITE
     nb = np.zeros((n_robots, NB_FIELDS, NB_SLOTS), dtype=np.int64).transpose(0, 2, 1)
     nb[:, :, NB_ID] = -1
     nb[:, :, NB_PREV] = -1

@@ -111,7 +111,8 @@ F_CAPTURE_OFFSET = 27  # no capture from this far (mm) or more off the site's ce
 F_REGROW_CAPTURE_OFFSET = 28  # F_CAPTURE_OFFSET while a searcher works for a regenerated target
 F_PINCH_PATIENCE = 29  # ticks at the shape after which a searcher refuses no more pinching sites
 F_PORTABLE_MATH = 30  # 1.0: odometry and homing use ``sim.fpmath`` (``SimParams.portable_math``)
-N_CF = 31
+F_FORMER_SLACK = 31  # a searcher near its former site: the slack (mm) on its odometric reach
+N_CF = 32
 
 #: The DESIGN section 2 robot: 7 mm/s, 13 deg/s, legs at 125.5 deg, radius 16.5 mm.
 NOMINAL_MOTION = (7.0, 13.0, 125.5, 16.5)
@@ -174,7 +175,7 @@ NON_NEGATIVE: frozenset[str] = frozenset(
         "regrowth_two_neighbour_widen_s", "capture_mouth_mm", "capture_offset_mm",
         "regrowth_capture_offset_mm", "remembered_neighbours_s", "regrowth_unpinch_mm",
         "isolated_rejoin_s", "hole_watch_s", "wave_s", "regrowth_plunge_s",
-        "first_plunge_after_s", "lost_escape_s", "offset_leave_mm",
+        "first_plunge_after_s", "lost_escape_s", "offset_leave_mm", "former_site_slack_mm",
     }
 )
 #: Parameters that may take any sign.
@@ -533,6 +534,13 @@ class ETParams:
     #: its estimate has slid away with its neighbours'. Estimates past 35 mm were found
     #: in 7 of 60 runs after damage, 6 of which did not re-form. 0: never.
     offset_leave_mm: float = 0.0
+    #: A robot that a regenerated target leaves out waits Queued on the site it held; the
+    #: searcher it becomes takes no site farther from that site's position than its
+    #: odometry has taken it plus this (mm), while its odometric path is short enough to
+    #: trust (``former_site``). Released beside a pair of placed robots, it otherwise
+    #: took the pair's other common neighbour site, the mirror of where it stood (traced on
+    #: `T` `kill random=0.1` seed 64, session 55). 0: no such test.
+    former_site_slack_mm: float = 30.0
     #: A searcher this long at the shape (s) in the first formation also gets its widened
     #: window at a site where it hears only two placed neighbours (a tip or an edge), not
     #: only at one with three or more; 0: never. First formations, 13 shapes, seeds 30-89:
@@ -757,6 +765,7 @@ class ETParams:
         cf[F_REGROW_CAPTURE_OFFSET] = self.regrowth_capture_offset_mm
         cf[F_CAPTURE_MOUTH] = self.capture_mouth_mm
         cf[F_PINCH_PATIENCE] = self.pinch_patience_s * ticks_per_s
+        cf[F_FORMER_SLACK] = self.former_site_slack_mm
         ci[C_PINCH_REFUSALS] = self.capture_pinch_refusals
         ci[C_REGROW_PINCH_REFUSALS] = self.regrowth_pinch_refusals
         ci[C_REGROW_OFFSETS] = REGROWTH_OFFSETS.index(self.regrowth_offsets)

@@ -27,6 +27,7 @@ from numba import njit
 
 from etswarm.algorithm.census_walk import RESULT_NONE, RESULT_TREE, WALK_NONE, WALK_START
 from etswarm.algorithm.extent import reset_extent
+from etswarm.algorithm.former_site import note_former_site
 from etswarm.algorithm.kernel_util import (
     ACTIVE,
     DANGER,
@@ -53,6 +54,7 @@ from etswarm.algorithm.memory import (
     NB_STATE,
     NB_TX,
     NB_TY,
+    NO_SITE,
     PHASE_ELECTING,
     PHASE_NORMAL,
     R_ADOPTED_AT,
@@ -369,7 +371,8 @@ def adopt_target(i, tick, ri, nb, slot, epoch, leader, gene_flag, gene_nn, slot_
     ri[i, R_GROWTH] = epoch
     x = ri[i, R_TAG_X]
     y = ri[i, R_TAG_Y]
-    keeps = ri[i, R_HAS_TAG] == 1 and gene_at(gene_flag[slot], ci, x, y) == 1
+    had = ri[i, R_HAS_TAG] == 1
+    keeps = had and gene_at(gene_flag[slot], ci, x, y) == 1
     if keeps and i != leader and pinches_new_target(i, tick, ri, nb, gene_flag[slot], ci):
         keeps = False  # it would narrow a free site of the new shape: it searches again
     for m in range(nb.shape[1]):
@@ -391,6 +394,10 @@ def adopt_target(i, tick, ri, nb, slot, epoch, leader, gene_flag, gene_nn, slot_
             set_state(i, ri, INACTIVE, tick)
             ri[i, R_TS] = 2
     else:
+        if had:
+            note_former_site(i, ri, x, y)  # it waits where it stood
+        elif before != QUEUED:
+            note_former_site(i, ri, NO_SITE, NO_SITE)  # a searcher: somewhere else by now
         ri[i, R_HAS_TAG] = 0
         set_state(i, ri, QUEUED, tick)
         ri[i, R_FLOOR] = -1

@@ -22,10 +22,12 @@ from __future__ import annotations
 
 from numba import njit
 
+from etswarm.algorithm.former_site import note_former_site
 from etswarm.algorithm.kernel_util import first_growth
 from etswarm.algorithm.memory import (
     NB_ID,
     NB_LAST,
+    NO_SITE,
     R_CUT_OFF_SINCE,
     R_EXCUSED,
     R_LEFT,
@@ -138,4 +140,5 @@ def leave_site(i, tick, ri, held_i, ox, oy):  # type: ignore[no-untyped-def]
     ri[i, R_LEFT] = 1
     ri[i, R_LEFT_X] = x
     ri[i, R_LEFT_Y] = y
+    note_former_site(i, ri, NO_SITE, NO_SITE)  # R_LEFT says where it is
     forget_left_site(held_i, ri, i, ox, oy)

@@ -6,6 +6,7 @@ import numpy as np
 from numba import njit
 
 from etswarm.algorithm.fill_order import strands_a_site
+from etswarm.algorithm.former_site import former_reach, note_former_site, out_of_reach
 from etswarm.algorithm.hole_watch import watch_blocks
 from etswarm.algorithm.homing import (
     homing_motion,
@@ -44,6 +45,7 @@ from etswarm.algorithm.memory import (
     NB_TS,
     NB_TX,
     NB_TY,
+    NO_SITE,
     R_BELOW_SINCE,
     R_CAND_X,
     R_CAND_Y,
@@ -211,8 +213,6 @@ CREEP_HOLD_TICKS = 62
 #: takes several seconds of pivoting; at the midpoint of a pair the nearest robot flips
 #: back and forth with every reading, each time for a fraction of that.
 FROM_MOVING_TICKS = 62
-#: No site (for ``find_site``'s left site: the robot left none).
-NO_SITE = -(1 << 40)
 #: A searcher that has moved this long (ticks) without steering by a robot other than its
 #: last ``memory.RECENT_REFS`` distinct references turns round (``follow_reference``).
 TRAPPED_TICKS = 31 * 300
@@ -475,7 +475,7 @@ def window_centre(cf, at_shape):  # type: ignore[no-untyped-def]
 @njit
 def find_site(  # type: ignore[no-untyped-def]
     i, tick, since, strict, ref_id, from_id, orbit, nb, nb_dist, gene_flag, ci, cf, tol_scale,
-    wide_min, held_i, ox, oy, pair_aim, plain_scale, left_x, left_y,
+    wide_min, held_i, ox, oy, pair_aim, plain_scale, left_x, left_y, ri, reach,
 ):
     """Localise robot i from its placed neighbours (paper Sec. 4.1).
 
@@ -503,7 +503,9 @@ def find_site(  # type: ignore[no-untyped-def]
     the window's centre (``window_centre``); ``plain_scale`` (>= 1) widens the plain window
     (a settled robot's confirmation, ``settle_tol_scale``). (left_x, left_y): the site robot
     i left when it was cut off (``rejoin``; ``NO_SITE`` for none): it takes no other, and
-    its Stable neighbours stand in for the Active one it needs.
+    its Stable neighbours stand in for the Active one it needs. ``reach`` (mm,
+    ``former_site.former_reach``): it takes no site farther than this from the position
+    of the site it held before it was left out (``ri``: its memory).
 
     Returns ``(found, x, y, min_active_ts)``; the best-fitting candidate wins.
     """
@@ -581,6 +583,8 @@ def find_site(  # type: ignore[no-untyped-def]
                     continue
                 if left_x != NO_SITE and (cx != left_x or cy != left_y):
                     continue  # every other memory holds the site it left: it takes that one
+                if out_of_reach(i, ri, cx, cy, reach, cf):
+                    continue  # it stands near its former site, not there
                 dist_a = nb_dist[i, a]
                 dist_b = nb_dist[i, b]
                 if offsets_on:
@@ -734,6 +738,7 @@ def search_rule(  # type: ignore[no-untyped-def]
     left_y = ri[i, R_LEFT_Y] if ri[i, R_LEFT] == 1 else NO_SITE
     moving = motor[i] != STOP  # its command since the last tick
     integrate(i, ri, motor[i], cf)
+    reach = former_reach(i, ri, cf)
     d = cf[F_SPACING]
     steer_fresh = ci[C_TICKS_MOVE_FRESH]
     closing = cf[F_CLOSING]
@@ -863,7 +868,7 @@ def search_rule(  # type: ignore[no-untyped-def]
         wide_min = wide_minimum(at_shape, ri[i, R_GROWTH], cf)
         found, cx, cy, min_ts = find_site(
             i, tick, since, True, ref, came, orbit, nb, nb_dist, gene_flag, ci, cf, widen,
-            wide_min, held_i, ox, oy, pair_aim, cf[F_SETTLE_SCALE], left_x, left_y,
+            wide_min, held_i, ox, oy, pair_aim, cf[F_SETTLE_SCALE], left_x, left_y, ri, reach,
         )
         same = found and cx == ri[i, R_CAND_X] and cy == ri[i, R_CAND_Y]
         retries = ci[C_SETTLE_RETRIES] if first else ci[C_REGROW_RETRIES]
@@ -872,7 +877,7 @@ def search_rule(  # type: ignore[no-untyped-def]
             # the candidate is still near.
             near, nx, ny, _ = find_site(
                 i, tick, since, False, ref, came, orbit, nb, nb_dist, gene_flag, ci, cf,
-                CREEP_TOL_SCALE, 0, held_i, ox, oy, pair_aim, 1.0, left_x, left_y,
+                CREEP_TOL_SCALE, 0, held_i, ox, oy, pair_aim, 1.0, left_x, left_y, ri, reach,
             )
             if near and nx == ri[i, R_CAND_X] and ny == ri[i, R_CAND_Y]:
                 ri[i, R_SETTLE_TRIES] += 1
@@ -911,6 +916,7 @@ def search_rule(  # type: ignore[no-untyped-def]
             estimate_offset(i, tick, cx, cy, ri[i, R_SUB_SINCE], nb, nb_dist, ri, ci, d)
             ri[i, R_HAS_TAG] = 1
             ri[i, R_LEFT] = 0
+            note_former_site(i, ri, NO_SITE, NO_SITE)
             ri[i, R_COUNT] = 0
             # It has observed no neighbour of this site yet; a mask left from a site it
             # held before a regeneration, sent before its first evaluation, would make
@@ -964,7 +970,7 @@ def search_rule(  # type: ignore[no-untyped-def]
         wide_min = wide_minimum(at_shape, ri[i, R_GROWTH], cf)
         found, cx, cy, min_ts = find_site(
             i, tick, since, False, ref, came, orbit, nb, nb_dist, gene_flag, ci, cf, widen,
-            wide_min, held_i, ox, oy, pair_aim, 1.0, left_x, left_y,
+            wide_min, held_i, ox, oy, pair_aim, 1.0, left_x, left_y, ri, reach,
         )
         if not found and pocket:
             found, cx, cy, min_ts = pocket_site(
@@ -986,7 +992,7 @@ def search_rule(  # type: ignore[no-untyped-def]
             recent = tick - steer_fresh
             near, nx, ny, _ = find_site(
                 i, tick, recent, False, ref, came, orbit, nb, nb_dist, gene_flag, ci, cf,
-                CREEP_TOL_SCALE, 0, held_i, ox, oy, pair_aim, 1.0, left_x, left_y,
+                CREEP_TOL_SCALE, 0, held_i, ox, oy, pair_aim, 1.0, left_x, left_y, ri, reach,
             )
             if near:
                 ri[i, R_CREEP_UNTIL] = tick + CREEP_HOLD_TICKS
