@@ -1,7 +1,7 @@
 """Where a searcher released after damage stands: near the site it held before.
 
 When a regenerated target leaves out a placed robot's site, the robot gives the site up
-and waits Queued where it stands (``regeneration.adopt``). It still knows its old tag
+and waits Queued where it stands (``regeneration.adopt_target``). It still knows its old tag
 (``R_FORMER_X``, ``R_FORMER_Y``), in the lattice frame of the new target, since the
 Leader lays the new shape over the same tags. When the robot is released it starts its
 odometry there (``homing.reset_odometry``), so it knows roughly how far it has gone since.
