@@ -28,6 +28,7 @@ import math
 from numba import njit
 
 from etswarm.algorithm.homing import ODO_PER_MM
+from etswarm.algorithm.kernel_util import lattice_distance
 from etswarm.algorithm.memory import (
     NO_SITE,
     R_FORMER_X,
@@ -73,7 +74,5 @@ def out_of_reach(i, ri, cx, cy, reach, cf):  # type: ignore[no-untyped-def]
     of searcher i's former site."""
     if reach >= ANY_REACH:
         return False
-    dx = float(cx - ri[i, R_FORMER_X])
-    dy = float(cy - ri[i, R_FORMER_Y])
-    # tags (x, y) on the lattice of X at 0 and Y at 120 degrees: |x X + y Y|^2 / d^2
-    return cf[F_SPACING] * math.sqrt(dx * dx - dx * dy + dy * dy) > reach
+    spacings = lattice_distance(cx, cy, ri[i, R_FORMER_X], ri[i, R_FORMER_Y])
+    return cf[F_SPACING] * spacings > reach
