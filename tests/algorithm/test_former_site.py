@@ -99,43 +99,39 @@ def test_a_searcher_beside_a_pair_takes_no_site_across_it_from_where_it_stood() 
     assert site() == (True, 1, 1)
 
 
-def test_robots_left_out_on_a_cut_crossbar_do_not_grow_it_mirrored() -> None:
+def damaged(shape: str, seed: int, damage: str, **options: float) -> dict:
+    """The summary of a 4 h run of ``shape`` with one damage and ET options."""
     from etswarm.algorithm.run import ETRun, RunConfig
 
+    config = RunConfig(shape=shape, seed=seed, damage=(damage,), max_time_s=4 * 3600,
+                       et=ETParams(**options))
+    return ETRun(config).run()
+
+
+def test_robots_left_out_on_a_cut_crossbar_do_not_grow_it_mirrored() -> None:
     # T kill random=0.1 seed 64 (session 55): the new T is laid one row above the old
     # crossbar, whose lower row is left out. Robots 21 and 27 waited there and, released,
     # took the sites above the upper row's robots across the pair, 69 mm away, so the
     # crossbar's right half grew mirrored and two sites tore.
-    def run(**options: float) -> dict:
-        config = RunConfig(shape="T", seed=64, damage=("kill random=0.1",),
-                           max_time_s=4 * 3600, et=ETParams(**options))
-        return ETRun(config).run()
-
-    default = run()
+    default = damaged("T", 64, "kill random=0.1")
     assert default["duplicate_tags"] == []
     (remnant,) = [c for c in default["components"] if c["robots"] >= 6]
     assert remnant["formed"] and remnant["jaccard"] == 1.0
     assert remnant["robots"] == remnant["target_cells"] == 41
-    off = run(former_site_slack_mm=0.0)
+    off = damaged("T", 64, "kill random=0.1", former_site_slack_mm=0.0)
     assert not any(c["formed"] for c in off["components"] if c["robots"] >= 6)
 
 
 def test_a_searcher_released_from_a_far_site_takes_no_mirror_site_of_a_small_remnant() -> None:
-    from etswarm.algorithm.run import ETRun, RunConfig
-
     # L remove random=0.2 seed 40 (session 54's tag held twice): in a 6-robot group only
     # robots 9 on (-1, -5) and 17 on (0, -4) kept their sites. Robot 25, left out on
     # (2, -5), came straight at the pair from 60 mm and took (-1, -4), the mirror of
     # (0, -5) where it stood; the group grew mirrored, and when it met the other group
     # two robots kept (-1, -3). By odometry it had gone 82 mm, and (-1, -4) lies 144 mm
     # from (2, -5).
-    def run(**options: float) -> dict:
-        config = RunConfig(shape="L", seed=40, damage=("remove random=0.2",),
-                           max_time_s=4 * 3600, et=ETParams(**options))
-        return ETRun(config).run()
-
-    default = run()
+    default = damaged("L", 40, "remove random=0.2")
     assert default["duplicate_tags"] == []
     assert all(c["formed"] and c["jaccard"] == 1.0
                for c in default["components"] if c["robots"] >= 6)
-    assert run(former_site_slack_mm=0.0)["duplicate_tags"] == [(-1, -3)]
+    off = damaged("L", 40, "remove random=0.2", former_site_slack_mm=0.0)
+    assert off["duplicate_tags"] == [(-1, -3)]
