@@ -27,10 +27,15 @@ SESSION_26_FORMATION = {"two_neighbour_widen_s": 0.0, **SESSION_34_FORMATION}
 #: with these.
 SESSION_19_WIDENING = {"widen_s": 1200.0, "capture_pinch_refusals": 2, **SESSION_26_FORMATION}
 
+#: Until session 56 a searcher long at a regrowing shape plunged only after a failed
+#: confirmation, not in a notch's mouth; regrowths traced before then run as described
+#: with this.
+SESSION_55_REGROWTH = {"mouth_plunge": "off"}
+
 #: Until session 55 a searcher released where a regenerated target left it out did not
 #: know it stood by its former site, and took sites across a pair from it; regrowths
 #: traced before then run as described with this.
-SESSION_54_REGROWTH = {"former_site_slack_mm": 0.0}
+SESSION_54_REGROWTH = {"former_site_slack_mm": 0.0, **SESSION_55_REGROWTH}
 
 #: Until session 54 a searcher of a regenerated target got the wide window only at sites
 #: of three or more placed neighbours, however long it had been at the shape; regrowths

@@ -71,7 +71,8 @@ C_FIRST_PLUNGE = 54  # first formation: ticks at the shape before a searcher may
 C_TICKS_LOST_ESCAPE = 55  # a lost searcher blocked by a foreign robot follows it this long
 C_SIGNED_FOREIGN = 56  # 1: a robot that gossips another target of its epoch is foreign
 C_OFFSET_LEAVE = 57  # an Active robot whose refined offset reaches this (mm) leaves its site
-N_CI = 58
+C_MOUTH_PLUNGE = 58  # 1: after damage, a searcher long at the shape in a notch's mouth plunges
+N_CI = 59
 
 #: Values of ``ci[C_RIGHT_OF_WAY]``: never, always, or in the first formation alone (a
 #: thin shape's, ``thin_right_of_way``).
@@ -485,6 +486,10 @@ class ETParams:
     #: course and met the same robots, for hours (dumbbell split y=mid seed 12, session
     #: 50). Going round the sibling, it passes the gap towards its own remnant. 0: off.
     lost_escape_s: float = 120.0
+    #: "on": after damage, a searcher long at the shape (as for ``regrowth_plunge_s``)
+    #: that reads the two robots across a free site of its target plunges, as after a
+    #: failed confirmation; "off": only after one.
+    mouth_plunge: str = "on"
     #: "on": a placed robot whose held-sites message carried the signature of another
     #: target of the epoch it works for (a sibling remnant's scaled shape) is foreign to a
     #: searcher whatever its tag. "off": only a robot whose tag is no site of the
@@ -619,6 +624,7 @@ class ETParams:
                 "queue_stride",
                 "silent_sites", "lost_beacon", "lost_yield", "right_of_way", "thin_right_of_way",
                 "site_offsets", "report_patience", "merge_remnants", "signed_foreign",
+                "mouth_plunge",
             ):
                 if value not in ("on", "off"):
                     raise EtswarmError(f"{f.name} must be 'on' or 'off', got {value!r}")
@@ -705,6 +711,7 @@ class ETParams:
         ci[C_LOST_BEACON] = 1 if self.lost_beacon == "on" else 0
         ci[C_LOST_YIELD] = 1 if self.lost_yield == "on" else 0
         ci[C_SIGNED_FOREIGN] = 1 if self.signed_foreign == "on" else 0
+        ci[C_MOUTH_PLUNGE] = 1 if self.mouth_plunge == "on" else 0
         if self.right_of_way == "on":
             ci[C_RIGHT_OF_WAY] = RIGHT_OF_WAY_ALWAYS
         elif thin and self.thin_right_of_way == "on":

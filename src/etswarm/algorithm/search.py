@@ -101,6 +101,7 @@ from etswarm.algorithm.params import (
     C_LOST_BEACON,
     C_LOST_HOMING,
     C_LOST_YIELD,
+    C_MOUTH_PLUNGE,
     C_OFFSETS,
     C_ORBIT_BOUNCE,
     C_PINCH_REFUSALS,
@@ -205,6 +206,8 @@ CLEARANCE_BELOW_AIM_MM = 1.0
 #: A plunging searcher (``R_PLUNGE_UNTIL``, ``regrowth_plunge_s``) edge-follows placed
 #: robots at this distance (mm): a 33 mm body and 2 mm.
 PLUNGE_AIM_MM = 35.0
+#: ``mouth_plunge``: the two robots across a free site each read within d + this (mm).
+MOUTH_READ_MM = 8.0
 CREEP_PERIOD_TICKS = 24
 CREEP_STOP_TICKS = 16
 CREEP_HOLD_TICKS = 62
@@ -722,6 +725,41 @@ def dive_depth(at_shape, growth, cf):  # type: ignore[no-untyped-def]
     return cf[F_DIVE_FIRST] * min(1.0, max(0.0, at_shape / widen_ticks - 1.0))
 
 
+@njit(inline="always")
+def in_mouth(i, recent, nb, nb_dist, gene_flag, ci, held_i, ox, oy, reach):  # type: ignore[no-untyped-def]
+    """Robot i reads two placed robots of its shape, heard since tick ``recent`` and each
+    within ``reach`` mm, that hold the two sites across a free site of its target from
+    each other (tags two steps apart in one lattice direction): it stands in the mouth of
+    a notch whose free site it cannot confirm from there."""
+    avoid = ci[C_AVOID_FOREIGN] == 1
+    for a in range(nb.shape[1]):
+        if nb[i, a, NB_ID] < 0 or not is_placed(nb[i, a, NB_STATE]):
+            continue
+        if nb[i, a, NB_LAST] < recent or nb_dist[i, a] > reach:
+            continue
+        if avoid and foreign(i, a, nb, gene_flag, ci):
+            continue
+        for b in range(a + 1, nb.shape[1]):
+            if nb[i, b, NB_ID] < 0 or not is_placed(nb[i, b, NB_STATE]):
+                continue
+            if nb[i, b, NB_LAST] < recent or nb_dist[i, b] > reach:
+                continue
+            dx = nb[i, b, NB_TX] - nb[i, a, NB_TX]
+            dy = nb[i, b, NB_TY] - nb[i, a, NB_TY]
+            if dx % 2 != 0 or dy % 2 != 0 or direction_index(dx // 2, dy // 2) < 0:
+                continue
+            mx = nb[i, a, NB_TX] + dx // 2
+            my = nb[i, a, NB_TY] + dy // 2
+            if gene_at(gene_flag, ci, mx, my) != 1 or site_taken(i, mx, my, nb):
+                continue
+            if is_held(held_i, mx, my, ox, oy):
+                continue
+            if avoid and foreign(i, b, nb, gene_flag, ci):
+                continue
+            return True
+    return False
+
+
 @njit
 def search_rule(  # type: ignore[no-untyped-def]
     i, tick, new_msgs, ri, nb, nb_dist, motor, gene_flag, gene_nn, ci, cf, held, ox, oy
@@ -998,6 +1036,18 @@ def search_rule(  # type: ignore[no-untyped-def]
                 ri[i, R_CREEP_UNTIL] = tick + CREEP_HOLD_TICKS
                 if ci[C_TICKS_HOVER] > 0:
                     note_hover(i, tick, nx, ny, ri)
+        if (
+            ci[C_MOUTH_PLUNGE] == 1
+            and ci[C_TICKS_PLUNGE] > 0
+            and not first_growth(i, ri)
+            and tick >= ri[i, R_PLUNGE_UNTIL]
+            and at_shape >= widening_ticks(ri[i, R_GROWTH], cf)
+            and in_mouth(i, tick - steer_fresh, nb, nb_dist, gene_flag, ci, held_i, ox, oy,
+                         d + MOUTH_READ_MM)
+        ):
+            # Long at a regrowing shape, it passes between the two robots across a free
+            # site: the site lies inside the notch, so it plunges in (``mouth_plunge``).
+            ri[i, R_PLUNGE_UNTIL] = tick + ci[C_TICKS_PLUNGE]
     # Near a free site: stop-and-go, so that steering and the capture test use readings
     # taken where the robot is, not up to seconds ago.
     creep_stop = (tick + i) % CREEP_PERIOD_TICKS < CREEP_STOP_TICKS
