@@ -487,8 +487,10 @@ class ETParams:
     #: 50). Going round the sibling, it passes the gap towards its own remnant. 0: off.
     lost_escape_s: float = 120.0
     #: "on": after damage, a searcher long at the shape (as for ``regrowth_plunge_s``)
-    #: that reads the two robots across a free site of its target plunges, as after a
-    #: failed confirmation; "off": only after one.
+    #: that reads the two robots across a free site of its target (``search.in_mouth``)
+    #: plunges, as after a failed confirmation; "off": only after one. Traced on `H`
+    #: split y=mid seed 47 (session 56): a searcher passed a notch's 70 mm mouth every
+    #: 440 s for 10 000 s, 20 mm short of its site, and never stopped to confirm it.
     mouth_plunge: str = "on"
     #: "on": a placed robot whose held-sites message carried the signature of another
     #: target of the epoch it works for (a sibling remnant's scaled shape) is foreign to a
