@@ -66,6 +66,15 @@ def direction_index(dx, dy):  # type: ignore[no-untyped-def]
 
 
 @njit(inline="always")
+def two_step_direction(dx, dy):  # type: ignore[no-untyped-def]
+    """Index 0..5 of the lattice direction k when (dx, dy) is two steps along it (the tags
+    across a site from each other), or -1."""
+    if dx % 2 != 0 or dy % 2 != 0:
+        return -1
+    return direction_index(dx // 2, dy // 2)
+
+
+@njit(inline="always")
 def lattice_distance(ax, ay, bx, by):  # type: ignore[no-untyped-def]
     """Distance between tags (ax, ay) and (bx, by) in lattice spacings."""
     dy = ay - by

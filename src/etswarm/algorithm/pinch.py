@@ -47,7 +47,14 @@ from __future__ import annotations
 
 from numba import njit
 
-from etswarm.algorithm.kernel_util import DIR_X, DIR_Y, direction_index, gene_at, is_placed
+from etswarm.algorithm.kernel_util import (
+    DIR_X,
+    DIR_Y,
+    direction_index,
+    gene_at,
+    is_placed,
+    two_step_direction,
+)
 from etswarm.algorithm.memory import (
     NB_ID,
     NB_LAST,
@@ -137,9 +144,9 @@ def narrow_mouth(i, cx, cy, since, free_mask, nb, nb_dist, cf):  # type: ignore[
             continue
         dx = nb[i, j, NB_TX] - cx
         dy = nb[i, j, NB_TY] - cy
-        if nb_dist[i, j] >= limit or dx % 2 != 0 or dy % 2 != 0:
+        if nb_dist[i, j] >= limit:
             continue
-        k = direction_index(dx // 2, dy // 2)  # two steps in direction k
+        k = two_step_direction(dx, dy)
         if k >= 0 and (free_mask >> k) & 1:
             return True
     return False

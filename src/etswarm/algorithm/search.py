@@ -33,6 +33,7 @@ from etswarm.algorithm.kernel_util import (
     hex_distance,
     is_placed,
     set_state,
+    two_step_direction,
 )
 from etswarm.algorithm.memory import (
     NB_ANCHORED,
@@ -726,6 +727,18 @@ def dive_depth(at_shape, growth, cf):  # type: ignore[no-untyped-def]
 
 
 @njit(inline="always")
+def heard_placed_within(i, m, recent, reach, nb, nb_dist):  # type: ignore[no-untyped-def]
+    """Row m of robot i's table is a placed robot heard since tick ``recent`` and read
+    within ``reach`` mm."""
+    return (
+        nb[i, m, NB_ID] >= 0
+        and is_placed(nb[i, m, NB_STATE])
+        and nb[i, m, NB_LAST] >= recent
+        and nb_dist[i, m] <= reach
+    )
+
+
+@njit(inline="always")
 def in_mouth(i, recent, nb, nb_dist, gene_flag, ci, held_i, ox, oy, reach):  # type: ignore[no-untyped-def]
     """Robot i reads two placed robots of its shape, heard since tick ``recent`` and each
     within ``reach`` mm, that hold the two sites across a free site of its target from
@@ -733,20 +746,16 @@ def in_mouth(i, recent, nb, nb_dist, gene_flag, ci, held_i, ox, oy, reach):  # t
     a notch whose free site it cannot confirm from there."""
     avoid = ci[C_AVOID_FOREIGN] == 1
     for a in range(nb.shape[1]):
-        if nb[i, a, NB_ID] < 0 or not is_placed(nb[i, a, NB_STATE]):
-            continue
-        if nb[i, a, NB_LAST] < recent or nb_dist[i, a] > reach:
+        if not heard_placed_within(i, a, recent, reach, nb, nb_dist):
             continue
         if avoid and foreign(i, a, nb, gene_flag, ci):
             continue
         for b in range(a + 1, nb.shape[1]):
-            if nb[i, b, NB_ID] < 0 or not is_placed(nb[i, b, NB_STATE]):
-                continue
-            if nb[i, b, NB_LAST] < recent or nb_dist[i, b] > reach:
+            if not heard_placed_within(i, b, recent, reach, nb, nb_dist):
                 continue
             dx = nb[i, b, NB_TX] - nb[i, a, NB_TX]
             dy = nb[i, b, NB_TY] - nb[i, a, NB_TY]
-            if dx % 2 != 0 or dy % 2 != 0 or direction_index(dx // 2, dy // 2) < 0:
+            if two_step_direction(dx, dy) < 0:
                 continue
             mx = nb[i, a, NB_TX] + dx // 2
             my = nb[i, a, NB_TY] + dy // 2
