@@ -119,8 +119,8 @@ def regrown(
         RunConfig(
             shape="starfish", seed=0, max_time_s=6 * 3600, damage=("split y=mid",),
             et=ETParams(placement=placement, site_offsets="off", lost_homing="off",
-                        placement_off_shape=off_shape, **SESSION_19_WIDENING,
-                        **SESSION_33_PLACEMENT),
+                        placement_off_shape=off_shape, **{**SESSION_19_WIDENING,
+                        **SESSION_33_PLACEMENT}),
         ), sim_params=NATIVE_MATHS
     )
     while not any(e["kind"] == "damage" for e in run.events):

@@ -92,7 +92,7 @@ def test_each_leg_of_a_cut_h_regrows_with_its_own_searchers() -> None:
     # Traced: with "follow" the 11-robot leg ends the 4 h run with two free sites and its
     # two searchers going round the 12-robot leg's finished shape.
     run = ETRun(RunConfig(shape="H", seed=0, damage=("split y=mid",), max_time_s=2 * 3600,
-                          et=ETParams(**SESSION_26_FORMATION, **SESSION_31_PLACEMENT)),
+                          et=ETParams(**{**SESSION_26_FORMATION, **SESSION_31_PLACEMENT})),
                 sim_params=NATIVE_MATHS)
     summary = run.run()
     groups = summary["components"]

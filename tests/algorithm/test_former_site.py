@@ -28,6 +28,7 @@ from etswarm.algorithm.params import ETParams
 from etswarm.algorithm.search import find_site, window_centre
 
 from .test_pair_side import WINDOW, pair_world
+from .traced import SESSION_56_SEARCH
 
 SLACK_MM = ETParams().former_site_slack_mm
 
@@ -113,12 +114,12 @@ def test_robots_left_out_on_a_cut_crossbar_do_not_grow_it_mirrored() -> None:
     # crossbar, whose lower row is left out. Robots 21 and 27 waited there and, released,
     # took the sites above the upper row's robots across the pair, 69 mm away, so the
     # crossbar's right half grew mirrored and two sites tore.
-    default = damaged("T", 64, "kill random=0.1")
+    default = damaged("T", 64, "kill random=0.1", **SESSION_56_SEARCH)
     assert default["duplicate_tags"] == []
     (remnant,) = [c for c in default["components"] if c["robots"] >= 6]
     assert remnant["formed"] and remnant["jaccard"] == 1.0
     assert remnant["robots"] == remnant["target_cells"] == 41
-    off = damaged("T", 64, "kill random=0.1", former_site_slack_mm=0.0)
+    off = damaged("T", 64, "kill random=0.1", former_site_slack_mm=0.0, **SESSION_56_SEARCH)
     assert not any(c["formed"] for c in off["components"] if c["robots"] >= 6)
 
 
@@ -129,9 +130,9 @@ def test_a_searcher_released_from_a_far_site_takes_no_mirror_site_of_a_small_rem
     # (0, -5) where it stood; the group grew mirrored, and when it met the other group
     # two robots kept (-1, -3). By odometry it had gone 82 mm, and (-1, -4) lies 144 mm
     # from (2, -5).
-    default = damaged("L", 40, "remove random=0.2")
+    default = damaged("L", 40, "remove random=0.2", **SESSION_56_SEARCH)
     assert default["duplicate_tags"] == []
     assert all(c["formed"] and c["jaccard"] == 1.0
                for c in default["components"] if c["robots"] >= 6)
-    off = damaged("L", 40, "remove random=0.2", former_site_slack_mm=0.0)
+    off = damaged("L", 40, "remove random=0.2", former_site_slack_mm=0.0, **SESSION_56_SEARCH)
     assert off["duplicate_tags"] == [(-1, -3)]

@@ -105,12 +105,12 @@ def test_two_remnants_grown_into_each_other_regrow_as_one() -> None:
     config = {"shape": "dumbbell", "seed": 19, "damage": ("remove random=0.3",),
               "max_time_s": 7200}
     apart = ETRun(
-        RunConfig(**config, et=ETParams(merge_remnants="off", **SESSION_26_FORMATION,
-                                        **SESSION_31_PLACEMENT)), sim_params=NATIVE_MATHS
+        RunConfig(**config, et=ETParams(merge_remnants="off", **{**SESSION_26_FORMATION,
+                                        **SESSION_31_PLACEMENT})), sim_params=NATIVE_MATHS
     ).run()
     assert not any(c["formed"] for c in apart["components"] if c["robots"] >= 6)
     merged = ETRun(
-        RunConfig(**config, et=ETParams(**SESSION_26_FORMATION, **SESSION_31_PLACEMENT)),
+        RunConfig(**config, et=ETParams(**{**SESSION_26_FORMATION, **SESSION_31_PLACEMENT})),
                    sim_params=NATIVE_MATHS
     ).run()
     counts = [e["count"] for e in merged["events"] if e["kind"] == "census"]

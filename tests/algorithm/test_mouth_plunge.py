@@ -32,6 +32,8 @@ from etswarm.algorithm.search import MOUTH_READ_MM, begin_search, in_mouth, sear
 from etswarm.algorithm.states import State
 from etswarm.sim.world import FORWARD
 
+from .traced import SESSION_56_SEARCH
+
 TICKS_PER_S = 31
 TICK = 200_000
 SEARCHER = 5
@@ -125,7 +127,7 @@ def test_no_plunge(world: dict) -> None:
 
 def crossbar(mouth_plunge: str) -> dict:
     config = RunConfig(shape="H", seed=47, damage=("split y=mid",), max_time_s=4 * 3600,
-                       et=ETParams(mouth_plunge=mouth_plunge))
+                       et=ETParams(mouth_plunge=mouth_plunge, **SESSION_56_SEARCH))
     summary = ETRun(config).run()
     assert summary["duplicate_tags"] == []
     return summary

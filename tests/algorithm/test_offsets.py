@@ -210,7 +210,7 @@ def test_a_regrown_h_fills_its_crossbar_between_stretched_legs(offsets):
     with it the legs are split 10 and 12 robots.)"""
     run = ETRun(RunConfig(shape="H", seed=2, max_time_s=4 * 3600, damage=("split y=mid",),
                           et=ETParams(site_offsets=offsets, capture_pinch_mm=0.0,
-                                       **SESSION_19_WIDENING, **SESSION_31_PLACEMENT)),
+                                       **{**SESSION_19_WIDENING, **SESSION_31_PLACEMENT})),
                 sim_params=NATIVE_MATHS)
     summary = run.run()
     assert summary["formed"]

@@ -27,7 +27,7 @@ from etswarm.algorithm.memory import (
     R_TAG_Y,
     allocate,
 )
-from etswarm.algorithm.params import ETParams
+from etswarm.algorithm.params import C_TICKS_FROM_RETURN, ETParams
 from etswarm.algorithm.search import (
     FROM_MOVING_TICKS,
     NO_SITE,
@@ -55,7 +55,7 @@ def test_a_reference_nearest_for_a_moment_is_not_where_the_robot_came_from() -> 
     nb[0, 1, NB_ID] = 8
 
     def steer_by(slot: int, moving: bool) -> None:  # as search_rule does every tick
-        follow_reference(0, ri, nb, slot, moving)
+        follow_reference(0, ri, nb, slot, moving, 0)
         track_trend(0, ri, nb, nb_dist, slot, R_REF_ID)
 
     for _ in range(FROM_MOVING_TICKS):
@@ -75,6 +75,35 @@ def test_a_reference_nearest_for_a_moment_is_not_where_the_robot_came_from() -> 
     assert came_from(8, 7, 7, 8) == 7  # 8 is nearest now, but it came from 7
     assert came_from(8, 5, 7, 8) == 8  # it came from elsewhere: 8 was passed first
     assert came_from(5, 7, 7, 8) == -1  # it steers by neither
+
+
+@pytest.mark.parametrize("return_s", [0.0, ETParams().from_return_s])
+def test_flipping_back_to_the_robot_it_came_from_keeps_it(return_s: float) -> None:
+    # Passing 7, then steering by 8 for a few seconds as it closes in on the pair's
+    # midpoint, where it stops and 7 is nearest again.
+    ci, _ = ETParams(from_return_s=return_s).pack(31, gene_x0=0, gene_y0=0)
+    return_ticks = int(ci[C_TICKS_FROM_RETURN])
+    ri, nb, nb_dist = allocate(1)
+    nb[0, 0, NB_ID] = 7
+    nb[0, 1, NB_ID] = 8
+
+    def steer_by(slot: int, ticks: int, moving: bool = True) -> None:
+        for _ in range(ticks):
+            follow_reference(0, ri, nb, slot, moving, return_ticks)
+            track_trend(0, ri, nb, nb_dist, slot, R_REF_ID)
+
+    steer_by(0, FROM_MOVING_TICKS)
+    steer_by(1, 2 * FROM_MOVING_TICKS)
+    assert ri[0, R_FROM_ID] == 7
+    steer_by(0, 1, moving=False)
+    # off, 8 became the robot it came from: the mirror of the pair's side
+    assert ri[0, R_FROM_ID] == (8 if return_s == 0 else 7)
+    if return_s > 0:
+        assert return_ticks > 2 * FROM_MOVING_TICKS
+        # Round a tip robot 8 and back to 7 on the other side: 8 is where it came from.
+        steer_by(1, return_ticks)
+        steer_by(0, 1)
+        assert ri[0, R_FROM_ID] == 8
 
 
 def pair_world():  # type: ignore[no-untyped-def]

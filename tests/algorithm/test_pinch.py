@@ -253,14 +253,14 @@ def test_refusing_narrow_mouths_lets_a_regrowth_fill_its_last_site() -> None:
     # for hours; with it every remnant re-forms.
     config = {"shape": "dumbbell", "seed": 5, "damage": ("split y=mid",),
               "max_time_s": 4 * 3600}
-    off = ETRun(RunConfig(**config, et=ETParams(capture_mouth_mm=0.0, **SESSION_33_PLACEMENT,
-                                                 **SESSION_44_FORMATION)), sim_params=NATIVE_MATHS)
+    off = ETRun(RunConfig(**config, et=ETParams(capture_mouth_mm=0.0, **{**SESSION_33_PLACEMENT,
+                                                 **SESSION_44_FORMATION})), sim_params=NATIVE_MATHS)
     summary = off.run()
     assert summary["formed"]  # the first formation
     assert not all(c["formed"] for c in summary["components"])
     assert narrowest_mouth_mm(off) < 68.0
-    on = ETRun(RunConfig(**config, et=ETParams(**SESSION_33_PLACEMENT,
-                                                **SESSION_44_FORMATION)),
+    on = ETRun(RunConfig(**config, et=ETParams(**{**SESSION_33_PLACEMENT,
+                                                **SESSION_44_FORMATION})),
                sim_params=NATIVE_MATHS).run()
     assert len(on["components"]) >= 2
     assert all(c["formed"] and c["jaccard"] == 1.0 for c in on["components"])

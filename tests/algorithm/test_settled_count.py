@@ -56,7 +56,7 @@ def test_a_large_remnant_elects_and_counts_exactly() -> None:
     run = ETRun(RunConfig(shape="bigdisc", seed=0, max_time_s=3.5 * 3600,
                           et=ETParams(held_gossip_every=0, site_offsets="off",
                                        lost_homing="off", false_alarm="regrow",
-                                       **SESSION_19_WIDENING, **SESSION_31_PLACEMENT)),
+                                       **{**SESSION_19_WIDENING, **SESSION_31_PLACEMENT})),
                 sim_params=NATIVE_MATHS)
     summary = run.run()
     kinds = [e["kind"] for e in summary["events"]]

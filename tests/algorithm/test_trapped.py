@@ -21,7 +21,7 @@ def steer(references: list[int], moving: bool = True) -> np.ndarray:
     orbit = np.zeros(len(references), dtype=np.int64)
     for tick, ref in enumerate(references):
         nb[0, 0, NB_ID] = ref
-        follow_reference(0, ri, nb, 0, moving)
+        follow_reference(0, ri, nb, 0, moving, 0)
         ri[0, R_REF_ID] = ref  # track_trend keeps the current reference here
         orbit[tick] = ri[0, R_ORBIT]
     return orbit

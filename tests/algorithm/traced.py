@@ -3,9 +3,15 @@ move their seeds off the situation they were written for."""
 
 from etswarm.sim.params import SimParams
 
+#: Until session 57 a searcher that flipped back to the robot it came from, after steering
+#: by the other of a pair for 2 s, took that other robot for the one it came from, and a
+#: third robot ruled a pair's mirror site out by the consistency tolerance alone; first
+#: formations and regrowths traced before then run as described with this.
+SESSION_56_SEARCH = {"from_return_s": 0.0, "mirror_margin_mm": 0.0}
+
 #: Until session 48 a searcher plunged (edge-followed nearer the placed robots) only after
 #: damage; first formations traced before then form as described with this.
-SESSION_47_FORMATION = {"first_plunge_after_s": 0.0}
+SESSION_47_FORMATION = {"first_plunge_after_s": 0.0, **SESSION_56_SEARCH}
 
 #: Until session 45 a searcher took the first free site it could locate, the waves from
 #: the seeds were an option; first formations traced before then form as described with
@@ -30,7 +36,7 @@ SESSION_19_WIDENING = {"widen_s": 1200.0, "capture_pinch_refusals": 2, **SESSION
 #: Until session 56 a searcher long at a regrowing shape plunged only after a failed
 #: confirmation, not in a notch's mouth; regrowths traced before then run as described
 #: with this.
-SESSION_55_REGROWTH = {"mouth_plunge": "off"}
+SESSION_55_REGROWTH = {"mouth_plunge": "off", **SESSION_56_SEARCH}
 
 #: Until session 55 a searcher released where a regenerated target left it out did not
 #: know it stood by its former site, and took sites across a pair from it; regrowths

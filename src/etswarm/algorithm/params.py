@@ -72,7 +72,8 @@ C_TICKS_LOST_ESCAPE = 55  # a lost searcher blocked by a foreign robot follows i
 C_SIGNED_FOREIGN = 56  # 1: a robot that gossips another target of its epoch is foreign
 C_OFFSET_LEAVE = 57  # an Active robot whose refined offset reaches this (mm) leaves its site
 C_MOUTH_PLUNGE = 58  # 1: after damage, a searcher long at the shape in a notch's mouth plunges
-N_CI = 59
+C_TICKS_FROM_RETURN = 59  # a switch back to the robot a searcher came from needs this much moving
+N_CI = 60
 
 #: Values of ``ci[C_RIGHT_OF_WAY]``: never, always, or in the first formation alone (a
 #: thin shape's, ``thin_right_of_way``).
@@ -113,7 +114,8 @@ F_REGROW_CAPTURE_OFFSET = 28  # F_CAPTURE_OFFSET while a searcher works for a re
 F_PINCH_PATIENCE = 29  # ticks at the shape after which a searcher refuses no more pinching sites
 F_PORTABLE_MATH = 30  # 1.0: odometry and homing use ``sim.fpmath`` (``SimParams.portable_math``)
 F_FORMER_SLACK = 31  # a searcher near its former site: the slack (mm) on its odometric reach
-N_CF = 32
+F_MIRROR_MARGIN = 32  # mm: a third robot rules a mirror out only fitting the site this much better
+N_CF = 33
 
 #: The DESIGN section 2 robot: 7 mm/s, 13 deg/s, legs at 125.5 deg, radius 16.5 mm.
 NOMINAL_MOTION = (7.0, 13.0, 125.5, 16.5)
@@ -177,6 +179,7 @@ NON_NEGATIVE: frozenset[str] = frozenset(
         "regrowth_capture_offset_mm", "remembered_neighbours_s", "regrowth_unpinch_mm",
         "isolated_rejoin_s", "hole_watch_s", "wave_s", "regrowth_plunge_s",
         "first_plunge_after_s", "lost_escape_s", "offset_leave_mm", "former_site_slack_mm",
+        "from_return_s", "mirror_margin_mm",
     }
 )
 #: Parameters that may take any sign.
@@ -221,6 +224,14 @@ class ETParams:
     #: and one run held a tag twice.
     regrowth_widen_s: float = 1200.0
     consistency_tol_mm: float = 16.0
+    #: A third placed robot whose reading is more than ``consistency_tol_mm`` off what the
+    #: mirror site of a pair predicts rules that site out only when its reading also fits
+    #: the candidate site better by at least this much (mm). Before (0), it ruled the mirror
+    #: out by the tolerance alone, while the candidate may be off by the widened one: on
+    #: dumbbell split y=mid seed 33 (session 57) robot 0,0 read 54 mm where both sites
+    #: predict 69-71 mm, so a searcher took the site on the far side of the pair, 78 mm
+    #: from where it stood.
+    mirror_margin_mm: float = 8.0
     #: At a pocket (see ``widen_max``) the consistency tolerance widens with the pair
     #: window, up to this factor: where the lattice has pinched a site's mouth narrower
     #: than a body, a searcher can only stop at the mouth, farther from the robot inside
@@ -492,6 +503,15 @@ class ETParams:
     #: split y=mid seed 47 (session 56): a searcher passed a notch's 70 mm mouth every
     #: 440 s for 10 000 s, 20 mm short of its site, and never stopped to confirm it.
     mouth_plunge: str = "on"
+    #: A searcher that steers by robot B after the robot A it came from, and then by A
+    #: again, takes B for the robot it came from only after steering by B for this long
+    #: while moving (s); before, 2 s sufficed, as for any reference. Settling midway
+    #: between a pair, the nearest of the two flips with every reading: on dumbbell split
+    #: y=mid seed 28 (session 57) a searcher that had passed 42 and steered by 28 for 4 s
+    #: flipped back to 42 as it stopped, so 28 became the robot it came from and it took
+    #: the site on the far side of the pair, mirrored, where it stood 72 mm off. Going
+    #: round a tip robot and back to its neighbour takes much longer. 0: off.
+    from_return_s: float = 8.0
     #: "on": a placed robot whose held-sites message carried the signature of another
     #: target of the epoch it works for (a sibling remnant's scaled shape) is foreign to a
     #: searcher whatever its tag. "off": only a robot whose tag is no site of the
@@ -714,6 +734,7 @@ class ETParams:
         ci[C_LOST_YIELD] = 1 if self.lost_yield == "on" else 0
         ci[C_SIGNED_FOREIGN] = 1 if self.signed_foreign == "on" else 0
         ci[C_MOUTH_PLUNGE] = 1 if self.mouth_plunge == "on" else 0
+        ci[C_TICKS_FROM_RETURN] = round(self.from_return_s * ticks_per_s)
         if self.right_of_way == "on":
             ci[C_RIGHT_OF_WAY] = RIGHT_OF_WAY_ALWAYS
         elif thin and self.thin_right_of_way == "on":
@@ -758,6 +779,7 @@ class ETParams:
         cf[F_REGROW_TWO_WIDEN_TICKS] = self.regrowth_two_neighbour_widen_s * ticks_per_s
         cf[F_AIM_RELAX] = self.pair_aim_relax_s * ticks_per_s
         cf[F_CONSIST_TOL] = self.consistency_tol_mm
+        cf[F_MIRROR_MARGIN] = self.mirror_margin_mm
         cf[F_CONSIST_WIDEN] = self.consistency_widen_max
         cf[F_SETTLE_SCALE] = self.settle_tol_scale
         cf[F_YIELD_DIST] = self.yield_distance_mm

@@ -115,6 +115,7 @@ from etswarm.algorithm.params import (
     C_SETTLE_RETRIES,
     C_SIGNED_FOREIGN,
     C_TICKS_COOLDOWN,
+    C_TICKS_FROM_RETURN,
     C_TICKS_HOVER,
     C_TICKS_LOST_ESCAPE,
     C_TICKS_MOVE_FRESH,
@@ -132,6 +133,7 @@ from etswarm.algorithm.params import (
     F_DIVE,
     F_DIVE_FIRST,
     F_FOLLOW_OFFSET,
+    F_MIRROR_MARGIN,
     F_PAIR_AIM,
     F_PAIR_TOL,
     F_PINCH_PATIENCE,
@@ -256,12 +258,14 @@ def forget_recent_references(i, ri):  # type: ignore[no-untyped-def]
 
 
 @njit
-def follow_reference(i, ri, nb, slot, moving):  # type: ignore[no-untyped-def]
+def follow_reference(i, ri, nb, slot, moving, return_ticks):  # type: ignore[no-untyped-def]
     """Robot i steers by the robot in table row ``slot`` this tick; ``moving``: its last
     motor command was not STOP. When the reference changes, the old one becomes the robot
     it came from (R_FROM_ID), if it steered by it while moving for ``FROM_MOVING_TICKS``;
     a reference that was nearest only for a moment (the two of a pair flicker at its
-    midpoint) leaves R_FROM_ID as it was.
+    midpoint) leaves R_FROM_ID as it was. When the new reference is the robot it came
+    from, the old one takes its place only after ``return_ticks`` (``C_TICKS_FROM_RETURN``,
+    when longer) of moving: a searcher stopping midway between a pair flips back.
 
     A searcher that has moved for ``TRAPPED_TICKS`` steering only by its last
     ``RECENT_REFS`` distinct references is trapped where the group's edge folds in (traced
@@ -270,7 +274,10 @@ def follow_reference(i, ri, nb, slot, moving):  # type: ignore[no-untyped-def]
     """
     sid = nb[i, slot, NB_ID]
     if sid != ri[i, R_REF_ID]:
-        if ri[i, R_REF_ID] >= 0 and ri[i, R_REF_MOVED] >= FROM_MOVING_TICKS:
+        need = FROM_MOVING_TICKS
+        if sid == ri[i, R_FROM_ID]:
+            need = max(need, return_ticks)
+        if ri[i, R_REF_ID] >= 0 and ri[i, R_REF_MOVED] >= need:
             ri[i, R_FROM_ID] = ri[i, R_REF_ID]
         ri[i, R_REF_MOVED] = 0
         known = False
@@ -483,21 +490,22 @@ def find_site(  # type: ignore[no-untyped-def]
 ):
     """Localise robot i from its placed neighbours (paper Sec. 4.1).
 
-    Two placed robots heard at about d whose tags are adjacent put the robot at one of
-    their two common lattice neighbours, ``c`` or its mirror ``c2``. The robot takes ``c``
-    only with evidence that it is not at ``c2``: ``c2`` is held by a robot it knows of, a
-    third placed robot heard since ``since`` is at the distance ``c`` predicts and not at
-    the one ``c2`` predicts, or ``c`` is on the outer side of the pair for a robot that
-    orbits clockwise (``orbit`` 0; the other side for 1) from the one of the two it came
-    from: ``from_id`` if it is one of them, else the reference ``ref_id`` it steers by
-    (see ``came_from``; nothing when it steers by neither). ``c`` must also have gene
-    flag 1, be held by no robot it knows of, agree with every placed robot heard since
-    ``since`` and, when ``strict``, every known robot of a neighbouring site must have
-    been heard since ``since``; and
-    an Active robot must be adjacent to it (the least TS among them is returned); and
-    taking it must not shut a free shape site next to it in: with ``C_HOLE_MEMORY`` by the
-    robot's memory ``held_i`` ((WX, WY) window at tag (ox, oy), see ``site_memory``) over the
-    whole shape, else from the robots it hears (``encloses_a_site``, ``closes_a_hole``).
+    Two placed robots heard at about d whose tags are adjacent put the robot at one of their
+    two common lattice neighbours, ``c`` or its mirror ``c2``. The robot takes ``c`` only
+    with evidence that it is not at ``c2``: ``c2`` is held by a robot it knows of, a third
+    placed robot heard since ``since`` is at the distance ``c`` predicts and not at the one
+    ``c2`` predicts (off that by more than the consistency tolerance, and by
+    ``F_MIRROR_MARGIN`` more than off ``c``'s), or ``c`` is on the outer side of the pair
+    for a robot that orbits clockwise (``orbit`` 0; the other side for 1) from the one of
+    the two it came from: ``from_id`` if it is one of them, else the reference ``ref_id`` it
+    steers by (see ``came_from``; nothing when it steers by neither). ``c`` must also have
+    gene flag 1, be held by no robot it knows of, agree with every placed robot heard since
+    ``since`` and, when ``strict``, every known robot of a neighbouring site must have been
+    heard since ``since``; and an Active robot must be adjacent to it (the least TS among
+    them is returned); and taking it must not shut a free shape site next to it in: with
+    ``C_HOLE_MEMORY`` by the robot's memory ``held_i`` ((WX, WY) window at tag (ox, oy), see
+    ``site_memory``) over the whole shape, else from the robots it hears
+    (``encloses_a_site``, ``closes_a_hole``).
     ``tol_scale`` widens the pair and balance tolerances; a candidate gets the wider window
     only when at least ``wide_min`` placed robots of its neighbour sites were heard (a
     pocket, where the site is hard to mistake), else the plain one; such a pocket candidate
@@ -517,6 +525,7 @@ def find_site(  # type: ignore[no-untyped-def]
     scale = max(tol_scale, plain_scale)
     pair_tol = cf[F_PAIR_TOL] * scale
     consist_tol = cf[F_CONSIST_TOL]
+    mirror_margin = cf[F_MIRROR_MARGIN]
     # a pocket candidate may disagree more (checked against the plain one below)
     consist_wide = consist_tol * min(tol_scale, cf[F_CONSIST_WIDEN])
     second_ring = ci[C_SECOND_RING]
@@ -631,7 +640,8 @@ def find_site(  # type: ignore[no-untyped-def]
                         err += e
                         worst = max(worst, e)
                         pred2 = expected_distance(i, j, c2x, c2y, nb, ci, cf)
-                        if abs(nb_dist[i, j] - pred2) > consist_tol:
+                        e2 = abs(nb_dist[i, j] - pred2)
+                        if e2 > consist_tol and (mirror_margin <= 0 or e2 - e >= mirror_margin):
                             ruled_out_mirror = True
                         if direction_index(jx - cx, jy - cy) >= 0:
                             n_adjacent += 1
@@ -843,7 +853,7 @@ def search_rule(  # type: ignore[no-untyped-def]
         reading = nb_dist[i, placed_slot]
         nearest = placed_est
         obstacle = min(queued_est, nearest_searcher, foreign_est)
-        follow_reference(i, ri, nb, placed_slot, moving)
+        follow_reference(i, ri, nb, placed_slot, moving, ci[C_TICKS_FROM_RETURN])
         track_trend(i, ri, nb, nb_dist, placed_slot, R_REF_ID)
         ri[i, R_ON_SHAPE] = 1
         if ri[i, R_SHAPE_SINCE] == 0:
@@ -858,7 +868,7 @@ def search_rule(  # type: ignore[no-untyped-def]
         reading = nb_dist[i, queued_slot]
         nearest = queued_est
         obstacle = min(nearest_searcher, foreign_est)
-        follow_reference(i, ri, nb, queued_slot, moving)
+        follow_reference(i, ri, nb, queued_slot, moving, ci[C_TICKS_FROM_RETURN])
         track_trend(i, ri, nb, nb_dist, queued_slot, R_REF_ID)
     else:
         # Nothing stationary in earshot: circle clockwise to find the group again, or
