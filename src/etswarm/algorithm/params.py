@@ -228,8 +228,8 @@ class ETParams:
     #: mirror site of a pair predicts rules that site out only when its reading also fits
     #: the candidate site better by at least this much (mm). Before (0), it ruled the mirror
     #: out by the tolerance alone, while the candidate may be off by the widened one: on
-    #: dumbbell split y=mid seed 33 (session 57) robot 0,0 read 54 mm where both sites
-    #: predict 69-71 mm, so a searcher took the site on the far side of the pair, 78 mm
+    #: dumbbell split y=mid seed 33 (session 57) the robot on (0, 0) read 54 mm where both
+    #: sites predict 69-71 mm, so a searcher took the site on the far side of the pair, 78 mm
     #: from where it stood.
     mirror_margin_mm: float = 8.0
     #: At a pocket (see ``widen_max``) the consistency tolerance widens with the pair
