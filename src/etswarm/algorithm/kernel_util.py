@@ -7,6 +7,9 @@ import math
 from numba import njit
 
 from etswarm.algorithm.memory import (
+    NB_ID,
+    NB_LAST,
+    NB_STATE,
     R_GROWTH,
     R_SINCE,
     R_STATE,
@@ -45,6 +48,18 @@ DIR_Y = (1, 1, 0, -1, -1, 0)
 def is_placed(state):  # type: ignore[no-untyped-def]
     """True for the states that hold a lattice tag."""
     return state >= INACTIVE
+
+
+@njit(inline="always")
+def heard_placed_within(i, m, since, reach, nb, nb_dist):  # type: ignore[no-untyped-def]
+    """Row m of robot i's table is a placed robot heard since tick ``since`` and read
+    within ``reach`` mm."""
+    return (
+        nb[i, m, NB_ID] >= 0
+        and is_placed(nb[i, m, NB_STATE])
+        and nb[i, m, NB_LAST] >= since
+        and nb_dist[i, m] <= reach
+    )
 
 
 @njit(inline="always")

@@ -35,13 +35,14 @@ import math
 
 from numba import njit
 
-from etswarm.algorithm.kernel_util import HALF_SQRT3, is_placed, lattice_distance
+from etswarm.algorithm.kernel_util import (
+    HALF_SQRT3,
+    heard_placed_within,
+    lattice_distance,
+)
 from etswarm.algorithm.memory import (
-    NB_ID,
-    NB_LAST,
     NB_OX,
     NB_OY,
-    NB_STATE,
     NB_TX,
     NB_TY,
     R_OFF_REFINE,
@@ -128,12 +129,7 @@ def expected_distance(i, j, cx, cy, nb, ci, cf):  # type: ignore[no-untyped-def]
 @njit(inline="always")
 def is_anchor(i, j, since, nb, nb_dist):  # type: ignore[no-untyped-def]
     """Row j of robot i's table is a placed robot read since ``since`` within range."""
-    return (
-        nb[i, j, NB_ID] >= 0
-        and is_placed(nb[i, j, NB_STATE])
-        and nb[i, j, NB_LAST] >= since
-        and nb_dist[i, j] <= ANCHOR_RANGE_MM
-    )
+    return heard_placed_within(i, j, since, ANCHOR_RANGE_MM, nb, nb_dist)
 
 
 @njit(inline="always")

@@ -30,6 +30,7 @@ from etswarm.algorithm.kernel_util import (
     direction_index,
     first_growth,
     gene_at,
+    heard_placed_within,
     hex_distance,
     is_placed,
     set_state,
@@ -734,18 +735,6 @@ def dive_depth(at_shape, growth, cf):  # type: ignore[no-untyped-def]
     if growth > 0:
         return cf[F_DIVE] * min(1.0, at_shape / widen_ticks)
     return cf[F_DIVE_FIRST] * min(1.0, max(0.0, at_shape / widen_ticks - 1.0))
-
-
-@njit(inline="always")
-def heard_placed_within(i, m, recent, reach, nb, nb_dist):  # type: ignore[no-untyped-def]
-    """Row m of robot i's table is a placed robot heard since tick ``recent`` and read
-    within ``reach`` mm."""
-    return (
-        nb[i, m, NB_ID] >= 0
-        and is_placed(nb[i, m, NB_STATE])
-        and nb[i, m, NB_LAST] >= recent
-        and nb_dist[i, m] <= reach
-    )
 
 
 @njit(inline="always")
