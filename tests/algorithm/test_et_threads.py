@@ -59,7 +59,8 @@ def test_threaded_parts_equal_the_unsplit_step() -> None:
     assert final_state(two) == final_state(whole)
 
 
-@pytest.mark.slow  # compiles the whole controller outside the cached kernels (over a minute)
+@pytest.mark.slow  # called from Python, et_part compiles on its own (a minute and a half, once:
+# numba then keeps it on disk)
 @pytest.mark.parametrize("cut", [0, 17, 45])
 def test_parts_then_rest_equal_the_step(cut: int) -> None:
     # each tick: the run's own tick (radio, et_step, move, collide), and on a copy of the

@@ -511,7 +511,7 @@ def busy_robots(lo, hi, tick, alive, in_count, idle, motor):  # type: ignore[no-
     return busy, n
 
 
-@njit
+@njit(cache=True)
 def et_part(  # type: ignore[no-untyped-def]
     lo,
     hi,
@@ -684,7 +684,7 @@ def et_part(  # type: ignore[no-untyped-def]
             encode_watch(i, tick, ri, ci, out_type, out_data)
 
 
-@njit
+@njit(cache=True)
 def et_rest(  # type: ignore[no-untyped-def]
     tick,
     alive,
@@ -705,7 +705,7 @@ def et_rest(  # type: ignore[no-untyped-def]
     return
 
 
-@njit
+@njit(cache=True)
 def et_step(  # type: ignore[no-untyped-def]
     tick,
     alive,

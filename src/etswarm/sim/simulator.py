@@ -40,7 +40,7 @@ from etswarm.errors import EtswarmError
 from etswarm.seeding import stream
 from etswarm.sim.balance import balance_size
 from etswarm.sim.collide import collide_phase
-from etswarm.sim.kernel import load_kernel
+from etswarm.sim.kernel import compiling, load_kernel
 from etswarm.sim.motion import move_phase
 from etswarm.sim.neighbours import Grid, grid_sync, make_grid
 from etswarm.sim.parallel import (
@@ -161,7 +161,8 @@ class Simulator:
             self._kernel = load_kernel(controller.step, threaded=self._scratch is not None,
                                        part_step=part_step, rest_step=rest_step,
                                        split=self._split is not None)
-            self._call_kernel(0)  # compile, or load from the disk cache, now
+            with compiling(self._kernel):  # one process at a time compiles a kernel
+                self._call_kernel(0)  # compile, or load from the disk cache, now
         elif not callable(getattr(controller, "step", None)):
             raise TypeError("controller needs a step(view) method or an njit step + mem")
 
