@@ -96,12 +96,12 @@ def test_an_unfinished_run_says_which_sites_are_free_and_who_searches() -> None:
     assert any(f"{main['free_sites']} target sites free" in line for line in describe(summary))
 
 
-#: bigplus seeds for the 300-cell test, and how many of them must form within 12 h. A run
-#: of 300 robots is chaotic, and its outcome can differ between machines (session 47's
-#: machine: seed 0, which formed in 5.5 h on session 45's, did not form in 12 h; seeds
-#: 2, 5 and 6 formed in 7.8, 7.0 and 6.6 h). 19 of seeds 0-19 formed within 12 h on
-#: session 45's machine.
-BIGPLUS_SEEDS = (2, 5, 6)
+#: bigplus seeds for the 300-cell test, and how many of them must form within 12 h. Since
+#: session 53's portable maths a run is the same on every machine: session 58 measured
+#: seeds 2, 5 and 6 formed in 7.1, 6.6 and 5.9 h (160, 38 and 33 s wall; session 47's
+#: machine, before portable maths: 7.8, 7.0 and 6.6 h). Seed 2 was dropped to keep the
+#: suite's time; 19 of seeds 0-19 formed within 12 h on session 45's machine.
+BIGPLUS_SEEDS = (5, 6)
 BIGPLUS_FORMED = 2
 
 
