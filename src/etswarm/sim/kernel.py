@@ -330,6 +330,9 @@ def run_ticks(n, tick0, cfg, grid, pos, heading, motor, led, alive, present, spe
     return state[ST_DONE]
 '''
 
+#: Start of the names of the modules :func:`load_kernel` generates.
+KERNEL_PREFIX = "_etswarm_kernel_"
+
 _loaded: dict[tuple[int, bool, int, int, bool], ModuleType] = {}
 
 
@@ -338,7 +341,8 @@ def compiling(kernel: Any) -> Iterator[None]:
     """Hold an exclusive lock on ``kernel``'s file (``<module>.lock`` beside it) while the
     caller makes the kernel's first call, which compiles it or loads it from numba's cache.
 
-    Two processes that need the same kernel at once (a sweep's workers, pytest-xdist's)
+    Only modules that :func:`load_kernel` generated (named ``KERNEL_PREFIX...``) are
+    locked. Two processes that need the same kernel at once (a sweep's workers, pytest-xdist's)
     then compile it once: the second waits and loads the first one's machine code from
     disk instead of compiling the same code beside it. Without ``fcntl`` (Windows) or a
     writable folder the call goes ahead unlocked.
@@ -348,7 +352,8 @@ def compiling(kernel: Any) -> Iterator[None]:
     except ImportError:  # pragma: no cover - not POSIX
         yield
         return
-    module = sys.modules.get(getattr(getattr(kernel, "py_func", None), "__module__", ""))
+    name = getattr(getattr(kernel, "py_func", None), "__module__", "") or ""
+    module = sys.modules.get(name) if name.startswith(KERNEL_PREFIX) else None
     source = getattr(module, "__file__", None)
     try:
         handle = open(Path(source).with_suffix(".lock"), "a") if source else None  # noqa: SIM115
@@ -447,10 +452,10 @@ def load_kernel(step: Any, threaded: bool = False, part_step: Any = None,
                               cache=digest is not None, borrow=_BORROW_SERIAL_ARRAYS)
     if digest is None:
         folder = Path(tempfile.mkdtemp(prefix="etswarm-kernel-"))
-        name = f"_etswarm_kernel_{label}_{id(step):x}"
+        name = f"{KERNEL_PREFIX}{label}_{id(step):x}"
     else:
         folder = kernel_dir()
-        name = f"_etswarm_kernel_{label}_{digest}"
+        name = f"{KERNEL_PREFIX}{label}_{digest}"
     path = folder / f"{name}.py"
     if not path.exists() or path.read_text() != source:
         tmp = folder / f".{name}.{os.getpid()}.tmp"
