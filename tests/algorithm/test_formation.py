@@ -11,12 +11,13 @@ from etswarm.algorithm.states import State
 from etswarm.measures.formation import duplicate_tags, in_holes, min_pair_distance
 from etswarm.sim.params import SimParams
 
-from .traced import NATIVE_MATHS
+from .traced import NATIVE_MATHS, SESSION_57_SEARCH
 
 
 def run_formation(shape: str, seed: int, max_time_s: float = 3600.0,
-                  sim_params: SimParams | None = None) -> ETRun:
-    run = ETRun(RunConfig(shape=shape, seed=seed, max_time_s=max_time_s), sim_params=sim_params)
+                  sim_params: SimParams | None = None, et: ETParams | None = None) -> ETRun:
+    run = ETRun(RunConfig(shape=shape, seed=seed, max_time_s=max_time_s, et=et or ETParams()),
+                sim_params=sim_params)
     run.run()
     return run
 
@@ -131,12 +132,14 @@ def test_the_ring_of_o_closes_only_once_the_edge_of_its_hole_is_held() -> None:
     # Seed 2 without the hole flag: a robot closes the ring while (-3, -2), on the hole's
     # edge, is free; the last searcher orbits outside, and the site is left to the hole.
     # With the flag the same seed forms.
-    plain = ETRun(RunConfig(shape="O", seed=2, max_time_s=10800, et=ETParams(hole_flag="off")),
+    plain = ETRun(RunConfig(shape="O", seed=2, max_time_s=10800,
+                            et=ETParams(hole_flag="off", **SESSION_57_SEARCH)),
                   sim_params=NATIVE_MATHS)
     summary = plain.run()
     assert not summary["formed"]
     assert [-3, -2] in summary["components"][0]["free_tags"]
-    run = run_formation("O", 2, max_time_s=10800, sim_params=NATIVE_MATHS)
+    run = run_formation("O", 2, max_time_s=10800, sim_params=NATIVE_MATHS,
+                        et=ETParams(**SESSION_57_SEARCH))
     summary = run.summary()
     assert summary["formed"], summary["components"]
     assert summary["jaccard"] == 1.0 and summary["duplicate_tags"] == []
@@ -147,7 +150,8 @@ def test_the_ring_of_o_stays_open_while_its_edge_sees_a_searcher_in_the_hole() -
     # Seed 0 without the hole watch: the ring closes with every searcher shut in the hole,
     # and the sites they would take stay free outside. With the watch (the default) the
     # same seed forms (session 42).
-    plain = ETRun(RunConfig(shape="O", seed=0, max_time_s=10800, et=ETParams(hole_watch_s=0)),
+    plain = ETRun(RunConfig(shape="O", seed=0, max_time_s=10800,
+                            et=ETParams(hole_watch_s=0, **SESSION_57_SEARCH)),
                   sim_params=NATIVE_MATHS)
     summary = plain.run()
     assert not summary["formed"]
@@ -163,7 +167,8 @@ def test_the_ring_of_o_stays_open_while_its_edge_sees_a_searcher_in_the_hole() -
         plain.world.pos[stable], plain.world.pos, plain.controller.tags, stable,
         plain.target, plain.config.et.spacing_mm,
     ).any()
-    run = run_formation("O", 0, max_time_s=10800, sim_params=NATIVE_MATHS)
+    run = run_formation("O", 0, max_time_s=10800, sim_params=NATIVE_MATHS,
+                        et=ETParams(**SESSION_57_SEARCH))
     summary = run.summary()
     assert summary["formed"], summary["components"]
     assert summary["jaccard"] == 1.0 and summary["duplicate_tags"] == []

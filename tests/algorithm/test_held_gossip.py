@@ -30,7 +30,7 @@ from etswarm.algorithm.run import ETRun, RunConfig
 from etswarm.algorithm.site_memory import encode_held, merge_held
 from etswarm.algorithm.states import State
 
-from .traced import SESSION_34_FORMATION
+from .traced import SESSION_34_FORMATION, SESSION_57_SEARCH
 
 #: Memory window of the sender and receiver (sites), its origin (tags), gossip timing.
 WINDOW = (9, 11)
@@ -145,7 +145,8 @@ def test_fewer_tags_held_twice_on_a_bent_lattice() -> None:
     for every in (0, 6):
         run = ETRun(RunConfig(shape="bigdisc", seed=0, max_time_s=4 * 3600,
                               et=ETParams(held_gossip_every=every, site_offsets="off",
-                                             lost_homing="off", report_patience="off")))
+                                          lost_homing="off", report_patience="off",
+                                          **SESSION_57_SEARCH)))
         dups[every] = len(run.run()["duplicate_tags"])
     assert dups[0] >= 5, dups
     assert dups[6] <= dups[0] // 4, dups

@@ -39,7 +39,7 @@ from etswarm.algorithm.run import ETRun, RunConfig
 from etswarm.algorithm.states import State
 from etswarm.sim import FORWARD, LEFT, RIGHT, SimParams, Simulator, World
 
-from .traced import NATIVE_MATHS, SESSION_19_WIDENING
+from .traced import NATIVE_MATHS, SESSION_19_WIDENING, SESSION_57_SEARCH
 
 
 class Silent:
@@ -218,7 +218,8 @@ def test_square_seed_228_waits_for_a_searcher_lost_along_the_repository(homing: 
     spiral started again at 1 m (until session 33), and the square stayed one robot
     short; the spiral now widens to 1.5 m, and its last laps find the shape."""
     run = ETRun(RunConfig(shape="square", seed=228, max_time_s=4 * 3600,
-                          et=ETParams(lost_homing=homing)), sim_params=NATIVE_MATHS)
+                          et=ETParams(lost_homing=homing, **SESSION_57_SEARCH)),
+                          sim_params=NATIVE_MATHS)
     summary = run.run()
     assert summary["formed"]
     assert not summary["duplicate_tags"]

@@ -17,13 +17,14 @@ from etswarm.algorithm.params import ETParams
 from etswarm.algorithm.run import ETRun, RunConfig
 from etswarm.errors import EtswarmError
 
-from .traced import NATIVE_MATHS
+from .traced import NATIVE_MATHS, SESSION_57_SEARCH
 
 
 def cut_dumbbell(**options: float) -> dict:
     """Summary of dumbbell `split y=mid` seed 12 over 4 h, with ``options`` set."""
     run = ETRun(RunConfig(shape="dumbbell", seed=12, damage=("split y=mid",),
-                          max_time_s=4 * 3600, et=ETParams(**options)), sim_params=NATIVE_MATHS)
+                          max_time_s=4 * 3600, et=ETParams(**{**SESSION_57_SEARCH, **options})),
+                sim_params=NATIVE_MATHS)
     return run.run()
 
 

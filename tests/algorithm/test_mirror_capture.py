@@ -21,6 +21,8 @@ from etswarm.algorithm.run import ETRun, RunConfig
 from etswarm.algorithm.states import State
 from etswarm.measures.formation import fit_residuals_mm
 
+from .traced import SESSION_57_SEARCH
+
 #: A robot this far (mm) from its site on the rigid fit of its remnant stands on another.
 OFF_SITE_MM = 30.0
 
@@ -29,7 +31,7 @@ def remnant_of_28(seed: int, **et: float) -> tuple[bool, float]:
     """Run dumbbell split y=mid for 4 h: whether the remnant of 28 robots re-formed, and
     how far (mm) its placed robot farthest from its site stands from it."""
     run = ETRun(RunConfig(shape="dumbbell", seed=seed, damage=("split y=mid",),
-                          max_time_s=4 * 3600, et=ETParams(**et)))
+                          max_time_s=4 * 3600, et=ETParams(**{**SESSION_57_SEARCH, **et})))
     summary = run.run()
     assert summary["duplicate_tags"] == []
     [component] = [c for c in summary["components"] if c["robots"] == 28]

@@ -33,7 +33,7 @@ from etswarm.algorithm.states import State
 from etswarm.measures.formation import duplicate_tags, min_pair_distance
 from etswarm.sim.world import FORWARD, LEFT, RIGHT
 
-from .traced import NATIVE_MATHS, SESSION_54_REGROWTH
+from .traced import NATIVE_MATHS, SESSION_54_REGROWTH, SESSION_57_SEARCH
 
 TICKS_PER_S = 31
 TICK = 200_000
@@ -161,7 +161,8 @@ def test_starfish_first_formations_that_form_only_with_the_first_formation_plung
     # free sites.
     def run(first_after_s: float) -> ETRun:
         r = ETRun(RunConfig(shape="starfish", seed=seed, max_time_s=4 * 3600,
-                            et=ETParams(first_plunge_after_s=first_after_s)),
+                            et=ETParams(first_plunge_after_s=first_after_s,
+                                        **SESSION_57_SEARCH)),
                   sim_params=NATIVE_MATHS)
         r.run()
         return r

@@ -41,12 +41,12 @@ def motor_with(other_id: int, other_mm: float, right_of_way: str) -> int:
 
 
 def test_a_higher_id_searcher_within_the_clearance_is_no_obstacle_with_right_of_way() -> None:
-    # Off: it turns away from the searcher 34 mm off (clockwise orbit: away is left).
-    assert motor_with(9, 34.0, "off") == LEFT
+    # Off: it turns away from the searcher 30 mm off (clockwise orbit: away is left).
+    assert motor_with(9, 30.0, "off") == LEFT
     # On: that searcher yields to it, so it steers by the placed robot as if alone.
     alone = motor_with(9, 500.0, "off")
     assert alone in (RIGHT, FORWARD)
-    assert motor_with(9, 34.0, "on") == alone
+    assert motor_with(9, 30.0, "on") == alone
 
 
 def test_a_lower_id_searcher_is_yielded_to_either_way() -> None:

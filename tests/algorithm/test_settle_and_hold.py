@@ -33,6 +33,7 @@ from etswarm.algorithm.states import State
 from etswarm.errors import EtswarmError
 
 from .find_site_args import ANYWHERE
+from .traced import SESSION_57_SEARCH
 
 TICK = 100_000
 #: An empty memory of held sites (window, origin) for ``find_site``.
@@ -163,7 +164,7 @@ def test_t_forms_with_retries_and_hold(seed: int) -> None:
     # the consistency settings these runs were measured with (session 10), no gossip
     et = ETParams(
         settle_retries=3, release_hold_s=20.0, consistency_widen_max=1.0,
-        fill_lookahead="off", held_gossip_every=0,
+        fill_lookahead="off", held_gossip_every=0, **SESSION_57_SEARCH,
     )
     run = ETRun(RunConfig(shape="T", seed=seed, max_time_s=3 * 3600, et=et))
     summary = run.run()

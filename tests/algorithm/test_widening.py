@@ -15,7 +15,7 @@ from etswarm.algorithm.params import (
 from etswarm.algorithm.search import dive_depth, widening_ticks
 from etswarm.errors import EtswarmError
 
-from .traced import NATIVE_MATHS, SESSION_34_FORMATION
+from .traced import NATIVE_MATHS, SESSION_34_FORMATION, SESSION_57_SEARCH
 
 
 def packed(**options: float) -> tuple[np.ndarray, np.ndarray]:
@@ -95,7 +95,7 @@ def test_a_regrowing_leg_gets_the_wide_window_at_two_neighbours_after_half_an_ho
     # alone its two searchers went round the leg for the last three hours.
     def run(**options: float) -> dict:
         config = RunConfig(shape="H", seed=13, damage=("split y=mid",), max_time_s=4 * 3600,
-                           et=ETParams(**options))
+                           et=ETParams(**{**SESSION_57_SEARCH, **options}))
         return ETRun(config).run()
 
     default = run()

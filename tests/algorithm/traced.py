@@ -3,11 +3,15 @@ move their seeds off the situation they were written for."""
 
 from etswarm.sim.params import SimParams
 
+#: Until session 58 a searcher kept 38 mm (not 34) from other searchers, Queued robots and
+#: robots of another shape; runs traced before then run as described with this.
+SESSION_57_SEARCH = {"clearance_mm": 38.0}
+
 #: Until session 57 a searcher that flipped back to the robot it came from, after steering
 #: by the other of a pair for 2 s, took that other robot for the one it came from, and a
 #: third robot ruled a pair's mirror site out by the consistency tolerance alone; first
 #: formations and regrowths traced before then run as described with this.
-SESSION_56_SEARCH = {"from_return_s": 0.0, "mirror_margin_mm": 0.0}
+SESSION_56_SEARCH = {"from_return_s": 0.0, "mirror_margin_mm": 0.0, **SESSION_57_SEARCH}
 
 #: Until session 48 a searcher plunged (edge-followed nearer the placed robots) only after
 #: damage; first formations traced before then form as described with this.
