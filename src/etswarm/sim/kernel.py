@@ -14,8 +14,8 @@ this one too, to the folder of this version of etswarm's sources
 
 The controller's own step functions are cached too (``@njit(cache=True)`` on ``et_step``,
 ``et_part`` and ``et_rest``): compiling the ET controller takes about 110 s, the loops
-round it 5-40 s, so with the controller on disk a second kernel (the split or threaded
-loop) or a direct call from Python no longer compiles it again. Measured on a 2-core
+round it 5-40 s, so a process that finds the controller on disk links its machine code
+into each loop instead of compiling it, and a direct call from Python loads it. Measured on a 2-core
 machine from empty caches, one process: serial, split and threaded loops 117, 47 and
 74 s before; with the controller on disk 6, 31 and 39 s.
 
