@@ -7,6 +7,7 @@ import pytest
 
 from etswarm.algorithm.memory import (
     NB_EPOCH,
+    NB_HOPS,
     NB_ID,
     NB_LAST,
     NB_STATE,
@@ -23,6 +24,7 @@ from etswarm.algorithm.memory import (
 )
 from etswarm.algorithm.merge import MERGE_AFTER_TICKS, contact_rule
 from etswarm.algorithm.params import ETParams
+from etswarm.algorithm.release import HOPS_NONE, HOPS_PARKED
 from etswarm.algorithm.run import ETRun, RunConfig
 from etswarm.algorithm.states import State
 
@@ -96,6 +98,41 @@ def test_a_break_in_the_contact_restarts_the_wait() -> None:
     start = 1004 + MERGE_AFTER_TICKS
     assert not elects_after(ri, nb, nb_dist, gene_flag, ci, MERGE_AFTER_TICKS - 8, start)
     assert elects_after(ri, nb, nb_dist, gene_flag, ci, 16, start + MERGE_AFTER_TICKS - 8)
+
+
+def beside_a_queued_robot(hops: int, epoch: int = 1, reading: float = 40.0,
+                          mode: str = "on"):  # type: ignore[no-untyped-def]
+    """``beside_a_stranger``, the stranger a Queued robot of ``epoch`` sending ``hops``."""
+    ri, nb, nb_dist, gene_flag, ci = beside_a_stranger(
+        (0, 0), reading, et=ETParams(merge_parked=mode)
+    )
+    nb[0, 0, NB_STATE] = State.QUEUED
+    nb[0, 0, NB_EPOCH] = epoch
+    nb[0, 0, NB_HOPS] = hops
+    return ri, nb, nb_dist, gene_flag, ci
+
+
+def test_a_robot_beside_a_parked_robot_starts_an_election() -> None:
+    world = beside_a_queued_robot(HOPS_PARKED)
+    assert elects_after(*world, MERGE_AFTER_TICKS + 8)
+    assert world[0][0, R_PHASE] == PHASE_ELECTING
+
+
+@pytest.mark.parametrize(
+    ("hops", "epoch", "reading", "mode"),
+    [
+        (HOPS_NONE, 1, 40.0, "on"),  # a Queued robot of its own remnant, waiting
+        (3, 1, 40.0, "on"),  # one that counts its hops to the shape
+        (HOPS_PARKED, 0, 40.0, "on"),  # the first formation's Queued robots send 0 too
+        (HOPS_PARKED, 2, 40.0, "on"),  # parked by a newer election than robot 0's
+        (HOPS_PARKED, 1, 80.0, "on"),  # parked, but not beside it
+        (HOPS_PARKED, 1, 40.0, "off"),
+    ],
+)
+def test_no_election_beside_other_queued_robots(hops: int, epoch: int, reading: float,
+                                                mode: str) -> None:
+    world = beside_a_queued_robot(hops, epoch, reading, mode)
+    assert not elects_after(*world, 2 * MERGE_AFTER_TICKS)
 
 
 def test_two_remnants_grown_into_each_other_regrow_as_one() -> None:

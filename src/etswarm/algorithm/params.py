@@ -73,7 +73,8 @@ C_SIGNED_FOREIGN = 56  # 1: a robot that gossips another target of its epoch is 
 C_OFFSET_LEAVE = 57  # an Active robot whose refined offset reaches this (mm) leaves its site
 C_MOUTH_PLUNGE = 58  # 1: after damage, a searcher long at the shape in a notch's mouth plunges
 C_TICKS_FROM_RETURN = 59  # a switch back to the robot a searcher came from needs this much moving
-N_CI = 60
+C_MERGE_PARKED = 60  # 1: a placed robot counts a parked robot beside it as contact (``merge``)
+N_CI = 61
 
 #: Values of ``ci[C_RIGHT_OF_WAY]``: never, always, or in the first formation alone (a
 #: thin shape's, ``thin_right_of_way``).
@@ -599,6 +600,13 @@ class ETParams:
     #: contact with its own) starts an election; both remnants' robots join it and elect
     #: as one (``merge``). "off": remnants that meet stay apart.
     merge_remnants: str = "on"
+    #: "on": with ``merge_remnants``, a placed robot also counts as contact a Queued robot
+    #: parked beside it: one of a remnant too small to grow, which stays put where the cut
+    #: left it (``release.HOPS_PARKED``). A sibling remnant growing over that spot could
+    #: never take the site it stands on (traced on `H` `split y=mid` seed 45: a lone robot
+    #: on the free (0, 0) of the 11-robot leg for 2.8 h); electing as one, the remnants
+    #: count it in and it joins the growth. "off": a parked robot is only an obstacle.
+    merge_parked: str = "off"
     #: "resume": a Leader whose census equals the cell count of its current target keeps
     #: that target where it is, and every robot goes back to the state it had before the
     #: election (a false alarm: nothing was lost); a robot that started the election
@@ -654,7 +662,7 @@ class ETParams:
                 "queue_stride",
                 "silent_sites", "lost_beacon", "lost_yield", "right_of_way", "thin_right_of_way",
                 "site_offsets", "report_patience", "merge_remnants", "signed_foreign",
-                "mouth_plunge",
+                "mouth_plunge", "merge_parked",
             ):
                 if value not in ("on", "off"):
                     raise EtswarmError(f"{f.name} must be 'on' or 'off', got {value!r}")
@@ -752,6 +760,7 @@ class ETParams:
         ci[C_RELEASE_FAR] = 1 if self.release_order == "far" else 0
         ci[C_AVOID_FOREIGN] = 1 if self.foreign_robots == "avoid" else 0
         ci[C_MERGE] = 1 if self.merge_remnants == "on" else 0
+        ci[C_MERGE_PARKED] = 1 if self.merge_parked == "on" else 0
         ci[C_FALSE_ALARM] = 1 if self.false_alarm == "resume" else 0
         ci[C_TICKS_REMEMBERED] = (
             ticks(self.remembered_neighbours_s)
