@@ -24,7 +24,8 @@ from etswarm.algorithm.memory import (
 )
 from etswarm.algorithm.merge import MERGE_AFTER_TICKS, contact_rule
 from etswarm.algorithm.params import ETParams
-from etswarm.algorithm.release import HOPS_NONE, HOPS_PARKED
+from etswarm.algorithm.parked import HOPS_PARKED
+from etswarm.algorithm.release import HOPS_NONE
 from etswarm.algorithm.run import ETRun, RunConfig
 from etswarm.algorithm.states import State
 

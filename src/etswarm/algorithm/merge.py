@@ -20,10 +20,9 @@ from __future__ import annotations
 
 from numba import njit
 
-from etswarm.algorithm.kernel_util import QUEUED, first_growth, is_placed
+from etswarm.algorithm.kernel_util import first_growth, is_placed
 from etswarm.algorithm.memory import (
     NB_EPOCH,
-    NB_HOPS,
     NB_ID,
     NB_LAST,
     NB_STATE,
@@ -33,8 +32,8 @@ from etswarm.algorithm.memory import (
     R_PHASE,
 )
 from etswarm.algorithm.params import C_MERGE, C_MERGE_PARKED, C_TICKS_NB_FRESH
+from etswarm.algorithm.parked import parked
 from etswarm.algorithm.regeneration import start_election
-from etswarm.algorithm.release import HOPS_PARKED
 from etswarm.algorithm.search import off_target
 
 #: A robot of another remnant this near (mm, a reading) is in contact: two bodies a lattice
@@ -44,16 +43,6 @@ MERGE_NEAR_MM = 50.0
 MERGE_AFTER_S = 30.0
 #: ``MERGE_AFTER_S`` in ticks of the simulator's 31 ticks per second.
 MERGE_AFTER_TICKS = round(MERGE_AFTER_S * 31)
-
-
-@njit(inline="always")
-def parked(i, m, epoch, nb):  # type: ignore[no-untyped-def]
-    """Row m of robot i's table is a Queued robot parked by a regeneration at an epoch no
-    newer than ``epoch``: its remnant was too small to grow, and it stays put for good
-    (``release.HOPS_PARKED``). The first formation's Queued robots send 0 hops too, at
-    epoch 0."""
-    e = nb[i, m, NB_EPOCH]
-    return nb[i, m, NB_STATE] == QUEUED and nb[i, m, NB_HOPS] == HOPS_PARKED and 1 <= e <= epoch
 
 
 @njit
@@ -71,7 +60,7 @@ def contact_rule(i, tick, ri, nb, nb_dist, gene_flag, ci):  # type: ignore[no-un
             continue
         if nb_dist[i, m] > MERGE_NEAR_MM:
             continue
-        if ci[C_MERGE_PARKED] == 1 and parked(i, m, epoch, nb):
+        if ci[C_MERGE_PARKED] == 1 and parked(i, m, nb) and nb[i, m, NB_EPOCH] <= epoch:
             touching = True
             break
         if not is_placed(nb[i, m, NB_STATE]) or nb[i, m, NB_EPOCH] != epoch:

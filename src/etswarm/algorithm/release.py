@@ -59,15 +59,11 @@ from etswarm.algorithm.params import (
     C_TICKS_RANK_WAIT,
     C_TICKS_RELEASE,
 )
+from etswarm.algorithm.parked import HOPS_PARKED
 from etswarm.algorithm.search import begin_search
 
 #: Hop count of a Queued robot that knows no way to the shape (also the largest count).
 HOPS_NONE = 255
-#: Hop count sent after a regeneration by a Queued robot whose target is empty (its
-#: remnant was too small to seed a shape): it never leaves, and the Queued robots that
-#: hear it, of a neighbouring remnant, leave it out of their release (a real count is at
-#: least 1).
-HOPS_PARKED = 0
 #: ``queued_rule``'s answer for a robot whose evaluation nothing but a message can change.
 NEVER = 1 << 62
 

@@ -106,6 +106,7 @@ from etswarm.algorithm.params import (
     C_MOUTH_PLUNGE,
     C_OFFSETS,
     C_ORBIT_BOUNCE,
+    C_PARKED_OBSTACLE,
     C_PINCH_REFUSALS,
     C_POCKET,
     C_QUEUE_STRIDE,
@@ -155,6 +156,7 @@ from etswarm.algorithm.params import (
     RIGHT_OF_WAY_ALWAYS,
     RIGHT_OF_WAY_FIRST_GROWTH,
 )
+from etswarm.algorithm.parked import parked
 from etswarm.algorithm.pinch import too_far_off, would_pinch
 from etswarm.algorithm.pocket import POCKET_AFTER_TICKS, pocket_site
 from etswarm.algorithm.site_memory import (
@@ -804,6 +806,7 @@ def search_rule(  # type: ignore[no-untyped-def]
     foreign_slot = -1
     look_for_beacon = ci[C_LOST_BEACON] == 1
     avoid_foreign = ci[C_AVOID_FOREIGN] == 1
+    parked_obstacle = ci[C_PARKED_OBSTACLE] == 1
     right_of_way = ci[C_RIGHT_OF_WAY] == RIGHT_OF_WAY_ALWAYS or (
         ci[C_RIGHT_OF_WAY] == RIGHT_OF_WAY_FIRST_GROWTH and first_growth(i, ri)
     )
@@ -832,6 +835,10 @@ def search_rule(  # type: ignore[no-untyped-def]
             elif est < placed_est:
                 placed_est = est
                 placed_slot = m
+        elif parked_obstacle and parked(i, m, nb):
+            if est < foreign_est:  # of a remnant that grows nothing: an obstacle
+                foreign_est = est
+                foreign_slot = m
         elif est < queued_est:
             queued_est = est
             queued_slot = m
