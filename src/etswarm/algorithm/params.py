@@ -75,7 +75,8 @@ C_MOUTH_PLUNGE = 58  # 1: after damage, a searcher long at the shape in a notch'
 C_TICKS_FROM_RETURN = 59  # a switch back to the robot a searcher came from needs this much moving
 C_MERGE_PARKED = 60  # 1: a placed robot counts a parked robot beside it as contact (``merge``)
 C_PARKED_OBSTACLE = 61  # 1: a searcher neither follows nor homes on a parked robot: an obstacle
-N_CI = 62
+C_LONE_KEPT = 62  # 1: a kept robot with no kept neighbour site in the new target searches again
+N_CI = 63
 
 #: Values of ``ci[C_RIGHT_OF_WAY]``: never, always, or in the first formation alone (a
 #: thin shape's, ``thin_right_of_way``).
@@ -635,6 +636,13 @@ class ETParams:
     #: (``pinch.pinches_new_target``). Whole mm; 0: every robot on a site of the new
     #: target keeps it (the paper).
     regrowth_unpinch_mm: int = 0
+    #: "on": a robot on a site of the old target that the new target keeps gives it up
+    #: and searches again when none of the placed robots it heard recently holds a
+    #: neighbour site of its own in the new target: a lone kept robot stands where the
+    #: old lattice put it, which may be far from where the growth from the new seeds
+    #: will reach, and the growth bends to meet it (traced on `T` `kill random=0.1` seed
+    #: 36, ``docs/algorithm.md``, "Session 59"). "off": it keeps the site (the paper).
+    lone_kept_leave: str = "off"
     #: A Stable robot that has heard no placed robot for this long (s), and counts its
     #: neighbours only by the sites a false alarm excused, was pushed out of their range
     #: (searchers going round a tip shove it a little at every pass): it leaves its site
@@ -669,7 +677,7 @@ class ETParams:
                 "queue_stride",
                 "silent_sites", "lost_beacon", "lost_yield", "right_of_way", "thin_right_of_way",
                 "site_offsets", "report_patience", "merge_remnants", "signed_foreign",
-                "mouth_plunge", "merge_parked", "parked_obstacle",
+                "mouth_plunge", "merge_parked", "parked_obstacle", "lone_kept_leave",
             ):
                 if value not in ("on", "off"):
                     raise EtswarmError(f"{f.name} must be 'on' or 'off', got {value!r}")
@@ -757,6 +765,7 @@ class ETParams:
         ci[C_LOST_YIELD] = 1 if self.lost_yield == "on" else 0
         ci[C_SIGNED_FOREIGN] = 1 if self.signed_foreign == "on" else 0
         ci[C_MOUTH_PLUNGE] = 1 if self.mouth_plunge == "on" else 0
+        ci[C_LONE_KEPT] = 1 if self.lone_kept_leave == "on" else 0
         ci[C_TICKS_FROM_RETURN] = round(self.from_return_s * ticks_per_s)
         if self.right_of_way == "on":
             ci[C_RIGHT_OF_WAY] = RIGHT_OF_WAY_ALWAYS

@@ -41,6 +41,7 @@ from etswarm.algorithm.kernel_util import (
     is_placed,
     set_state,
 )
+from etswarm.algorithm.lone_kept import lone_in_new_target
 from etswarm.algorithm.memory import (
     NB_EEPOCH,
     NB_EHOP,
@@ -375,6 +376,8 @@ def adopt_target(i, tick, ri, nb, slot, epoch, leader, gene_flag, gene_nn, slot_
     keeps = had and gene_at(gene_flag[slot], ci, x, y) == 1
     if keeps and i != leader and pinches_new_target(i, tick, ri, nb, gene_flag[slot], ci):
         keeps = False  # it would narrow a free site of the new shape: it searches again
+    if keeps and i != leader and lone_in_new_target(i, tick, ri, nb, gene_flag[slot], ci):
+        keeps = False  # no kept neighbour: the growth would bend to meet it
     for m in range(nb.shape[1]):
         nb[i, m, NB_ID] = -1
     ri[i, R_COUNT] = 0
