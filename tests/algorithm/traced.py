@@ -3,9 +3,15 @@ move their seeds off the situation they were written for."""
 
 from etswarm.sim.params import SimParams
 
+#: Until session 59 a searcher edge-followed a robot parked by a too-small remnant as any
+#: Queued robot, a placed robot beside one did not elect again with it, and a robot kept on
+#: its site by a regeneration kept it with no kept neighbour site; regrowths traced before
+#: then run as described with this.
+SESSION_58_REGROWTH = {"parked_obstacle": "off", "merge_parked": "off", "lone_kept_leave": "off"}
+
 #: Until session 58 a searcher kept 38 mm (not 34) from other searchers, Queued robots and
 #: robots of another shape; runs traced before then run as described with this.
-SESSION_57_SEARCH = {"clearance_mm": 38.0}
+SESSION_57_SEARCH = {"clearance_mm": 38.0, **SESSION_58_REGROWTH}
 
 #: Until session 57 a searcher that flipped back to the robot it came from, after steering
 #: by the other of a pair for 2 s, took that other robot for the one it came from, and a

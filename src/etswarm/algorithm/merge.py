@@ -14,6 +14,11 @@ site of its own target (``search.off_target``). Once it has heard such a robot w
 epoch. The robots of both remnants hear it (both are at that epoch) and join, so the two
 elect one Leader, count themselves together and regrow one shape. The first formation has
 one target, so this never happens there.
+
+With ``ETParams.merge_parked``, a Queued robot *parked* beside it (``parked``: its remnant
+was too small to grow, and it stays where the damage left it) is contact too: a remnant
+whose scaled shape grew round such a robot could never take the site it stands on
+(`H` `split y=mid` seed 45), and electing with it counts it in.
 """
 
 from __future__ import annotations

@@ -604,17 +604,17 @@ class ETParams:
     merge_remnants: str = "on"
     #: "on": with ``merge_remnants``, a placed robot also counts as contact a Queued robot
     #: parked beside it: one of a remnant too small to grow, which stays put where the cut
-    #: left it (``release.HOPS_PARKED``). A sibling remnant growing over that spot could
-    #: never take the site it stands on (traced on `H` `split y=mid` seed 45: a lone robot
-    #: on the free (0, 0) of the 11-robot leg for 2.8 h); electing as one, the remnants
-    #: count it in and it joins the growth. "off": a parked robot is only an obstacle.
-    merge_parked: str = "off"
-    #: "on": a searcher takes a parked Queued robot (``parked``) for an obstacle only, as
-    #: it does a robot of another shape: it does not edge-follow it as the repository
-    #: (traced on `T` `remove random=0.2` seed 14: a searcher went round a lone parked
-    #: robot 150 mm from its shape for 2.7 h, the last free site empty). "off": it follows
-    #: it as any Queued robot.
-    parked_obstacle: str = "off"
+    #: left it (``parked``). A sibling remnant growing over that spot could never take the
+    #: site it stands on (traced on `H` `split y=mid` seed 45: a lone robot on the free
+    #: (0, 0) of the 11-robot leg for 2.8 h); electing as one, the remnants count it in
+    #: and it joins the growth. "off": the parked robot stays where it is.
+    merge_parked: str = "on"
+    #: "on": a searcher takes a parked Queued robot (``parked``, see ``merge_parked``) for
+    #: an obstacle only, as it does a robot of another shape: it does not edge-follow it
+    #: as the repository (traced on `T` `remove random=0.2` seed 14: a searcher went round
+    #: a lone parked robot 150 mm from its shape for 2.7 h, the last free site empty).
+    #: "off": it follows it as any Queued robot.
+    parked_obstacle: str = "on"
     #: "resume": a Leader whose census equals the cell count of its current target keeps
     #: that target where it is, and every robot goes back to the state it had before the
     #: election (a false alarm: nothing was lost); a robot that started the election
@@ -642,7 +642,7 @@ class ETParams:
     #: old lattice put it, which may be far from where the growth from the new seeds
     #: will reach, and the growth bends to meet it (traced on `T` `kill random=0.1` seed
     #: 36, ``docs/algorithm.md``, "Session 59"). "off": it keeps the site (the paper).
-    lone_kept_leave: str = "off"
+    lone_kept_leave: str = "on"
     #: A Stable robot that has heard no placed robot for this long (s), and counts its
     #: neighbours only by the sites a false alarm excused, was pushed out of their range
     #: (searchers going round a tip shove it a little at every pass): it leaves its site
