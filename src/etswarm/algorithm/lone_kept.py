@@ -8,9 +8,9 @@ held. Each stands where the old lattice put it, and the old lattice drifted as i
 (``docs/algorithm.md``, "Large shapes: the lattice drifts as it grows"), so it may stand
 20-30 mm from where the growth from the new seeds will reach. Traced on `T` `kill
 random=0.1` seed 36: robots 33 and 41 kept (-1, -2) and (-2, -4), 18 and 30 mm off the
-new stem's line; the stem grew from (0, 0) to meet them, bent, and three sites beside it
-were never taken (robots there stood 60-190 mm from their sites by the remnant's rigid
-fit).
+new stem's line; the stem grew from (0, 0) to meet them and bent, three sites beside it
+were never taken, and eight robots ended 26-197 mm from their sites by the remnant's
+rigid fit.
 
 With ``ETParams.lone_kept_leave`` "on", such a robot gives the site up and joins again
 through Queued and Search, as a robot the new target leaves out does. It decides from

@@ -74,7 +74,7 @@ C_OFFSET_LEAVE = 57  # an Active robot whose refined offset reaches this (mm) le
 C_MOUTH_PLUNGE = 58  # 1: after damage, a searcher long at the shape in a notch's mouth plunges
 C_TICKS_FROM_RETURN = 59  # a switch back to the robot a searcher came from needs this much moving
 C_MERGE_PARKED = 60  # 1: a placed robot counts a parked robot beside it as contact (``merge``)
-C_PARKED_OBSTACLE = 61  # 1: a searcher neither follows nor homes on a parked robot: an obstacle
+C_PARKED_OBSTACLE = 61  # 1: a searcher takes a parked robot for an obstacle, not the repository
 C_LONE_KEPT = 62  # 1: a kept robot with no kept neighbour site in the new target searches again
 N_CI = 63
 
