@@ -21,10 +21,13 @@ from etswarm.algorithm.memory import (
     NB_TX,
     NB_TY,
     R_FROM_ID,
+    R_GROWTH,
+    R_RECENT0,
     R_REF_ID,
     R_STATE,
     R_TAG_X,
     R_TAG_Y,
+    RECENT_REFS,
     allocate,
 )
 from etswarm.algorithm.params import C_TICKS_FROM_RETURN, ETParams
@@ -40,6 +43,7 @@ from etswarm.algorithm.search import (
     window_centre,
 )
 from etswarm.algorithm.states import State
+from etswarm.errors import EtswarmError
 from etswarm.shapes.lattice import neighbour_counts
 
 from .find_site_args import ANYWHERE
@@ -175,3 +179,36 @@ def test_a_searcher_takes_the_site_on_the_side_it_passes_on() -> None:
     assert ri[0, R_REF_ID] == 1 and ri[0, R_FROM_ID] == 2
     assert ri[0, R_STATE] == State.INACTIVE
     assert (ri[0, R_TAG_X], ri[0, R_TAG_Y]) == (0, -1)
+
+
+@pytest.mark.parametrize("mode", ["off", "on", "regrowth"])
+@pytest.mark.parametrize("regrowth", [False, True])
+def test_the_robot_met_first_of_a_pair_is_the_one_passed_first(mode: str, regrowth: bool) -> None:
+    # Steering by A (robot 1) now, it came from robot 5, outside the pair; B (robot 2) was
+    # its reference for a moment before A. Going clockwise from B to A it stands on the
+    # left of B->A, (0, -1); taking A for the one it passed first puts it on (1, 1).
+    _, nb, nb_dist, gene_flag, _, _, cf, held = pair_world()
+    ci, _ = ETParams(came_order=mode).pack(31, gene_x0=GENE_X0, gene_y0=GENE_X0)
+    nb[0, :2, NB_LAST] = 10
+    nb_dist[0, :2] = (40.0, 40.6)
+    ri, reach = ANYWHERE
+    ri = ri.copy()
+    ri[0, R_RECENT0 : R_RECENT0 + RECENT_REFS] = (1, 2, 5, -1)
+    ri[0, R_GROWTH] = 1 if regrowth else 0
+    memory = (held[0], *WINDOW)
+    found, x, y, _ = find_site(0, 10, 0, True, 1, 5, 0, nb, nb_dist, gene_flag.astype(np.int64),
+                               ci, cf, 1.0, 3, *memory, window_centre(cf, 0), 1.0, NO_SITE,
+                               NO_SITE, ri, reach)
+    by_order = mode == "on" or (mode == "regrowth" and regrowth)
+    assert (found, x, y) == ((True, 0, -1) if by_order else (True, 1, 1))
+    # With only A in its list (B never its reference) the order says nothing: A it is.
+    ri[0, R_RECENT0 : R_RECENT0 + RECENT_REFS] = (1, 5, -1, -1)
+    found, x, y, _ = find_site(0, 10, 0, True, 1, 5, 0, nb, nb_dist, gene_flag.astype(np.int64),
+                               ci, cf, 1.0, 3, *memory, window_centre(cf, 0), 1.0, NO_SITE,
+                               NO_SITE, ri, reach)
+    assert (found, x, y) == (True, 1, 1)
+
+
+def test_came_order_must_be_a_mode() -> None:
+    with pytest.raises(EtswarmError, match="came_order must be one of"):
+        ETParams(came_order="maybe")

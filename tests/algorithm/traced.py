@@ -3,11 +3,19 @@ move their seeds off the situation they were written for."""
 
 from etswarm.sim.params import SimParams
 
+#: Until session 59 a searcher that came to a pair from a robot outside it took the one
+#: it steered by for the one it passed first, after damage too (``met_order``);
+#: regrowths traced before then run as described with this.
+SESSION_59_REGROWTH = {"came_order": "off"}
+
 #: Until session 59 a searcher edge-followed a robot parked by a too-small remnant as any
 #: Queued robot, a placed robot beside one did not elect again with it, and a robot kept on
 #: its site by a regeneration kept it with no kept neighbour site; regrowths traced before
 #: then run as described with this.
-SESSION_58_REGROWTH = {"parked_obstacle": "off", "merge_parked": "off", "lone_kept_leave": "off"}
+SESSION_58_REGROWTH = {
+    "parked_obstacle": "off", "merge_parked": "off", "lone_kept_leave": "off",
+    **SESSION_59_REGROWTH,
+}
 
 #: Until session 58 a searcher kept 38 mm (not 34) from other searchers, Queued robots and
 #: robots of another shape; runs traced before then run as described with this.

@@ -76,7 +76,8 @@ C_TICKS_FROM_RETURN = 59  # a switch back to the robot a searcher came from need
 C_MERGE_PARKED = 60  # 1: a placed robot counts a parked robot beside it as contact (``merge``)
 C_PARKED_OBSTACLE = 61  # 1: a searcher takes a parked robot for an obstacle, not the repository
 C_LONE_KEPT = 62  # 1: a kept robot with no kept neighbour site in the new target searches again
-N_CI = 63
+C_CAME_ORDER = 63  # which of a pair a searcher passed first, by the order it met them (mode)
+N_CI = 64
 
 #: Values of ``ci[C_RIGHT_OF_WAY]``: never, always, or in the first formation alone (a
 #: thin shape's, ``thin_right_of_way``).
@@ -150,6 +151,10 @@ FALSE_ALARM_MODES = ("resume", "regrow")
 #: When a searcher long at the shape may take a site from the robots round it
 #: (``ETParams.pocket``), in the order of their codes in ``ci``.
 POCKET_MODES = ("off", "on", "regrowth", "located")
+#: ``ETParams.came_order`` modes, in the order of their codes in ``ci`` (``met_order``).
+CAME_ORDER_MODES = ("off", "on", "regrowth")
+CAME_ORDER_ON = 1
+CAME_ORDER_REGROWTH = 2
 POCKET_ON = 1
 POCKET_REGROWTH = 2
 POCKET_LOCATED = 3
@@ -167,6 +172,7 @@ CHOICES: dict[str, tuple[str, ...]] = {
     "false_alarm": FALSE_ALARM_MODES,
     "lost_homing": LOST_HOMING_MODES,
     "pocket": POCKET_MODES,
+    "came_order": CAME_ORDER_MODES,
 }
 
 
@@ -663,6 +669,14 @@ class ETParams:
     #: min against 43 with it). 0: off, the paper's first site found. 1200 formed disc
     #: 119 of 120 runs against 113 (``docs/algorithm.md``, sessions 44 and 45).
     wave_s: float = 1200.0
+    #: Which robot of a pair a searcher passed first, when it came from a robot outside
+    #: the pair (it decides the side of the pair the searcher takes a site on): "off",
+    #: the one it steers by now (``search.came_from``); "on", the one of the two it met
+    #: first as its reference, when it steered by both (``met_order``); "regrowth", so
+    #: only after damage (traced on dumbbell ``split y=mid`` seed 77: a searcher that
+    #: had steered by the first of the pair for less than 2 s took the mirror site, and
+    #: a mirrored row of the lattice grew from it).
+    came_order: str = "regrowth"
 
     def __post_init__(self) -> None:
         for f in fields(self):
@@ -778,6 +792,7 @@ class ETParams:
         ci[C_MERGE] = 1 if self.merge_remnants == "on" else 0
         ci[C_MERGE_PARKED] = 1 if self.merge_parked == "on" else 0
         ci[C_PARKED_OBSTACLE] = 1 if self.parked_obstacle == "on" else 0
+        ci[C_CAME_ORDER] = CAME_ORDER_MODES.index(self.came_order)
         ci[C_FALSE_ALARM] = 1 if self.false_alarm == "resume" else 0
         ci[C_TICKS_REMEMBERED] = (
             ticks(self.remembered_neighbours_s)

@@ -93,6 +93,7 @@ from etswarm.algorithm.memory import (
     SUB_SETTLE,
 )
 from etswarm.algorithm.messages import ANCHORED_BIT
+from etswarm.algorithm.met_order import by_met_order, first_met
 from etswarm.algorithm.offsets import estimate_offset, expected_distance
 from etswarm.algorithm.params import (
     C_AVOID_FOREIGN,
@@ -544,6 +545,7 @@ def find_site(  # type: ignore[no-untyped-def]
     offsets_on = ci[C_OFFSETS] == 1
     pre_tol = pair_tol + OFFSET_PREFILTER_MM if offsets_on else pair_tol
     avoid_foreign = ci[C_AVOID_FOREIGN] == 1
+    by_order = by_met_order(i, ri, ci)
     for a in range(slots):
         if nb[i, a, NB_ID] < 0 or not is_placed(nb[i, a, NB_STATE]):
             continue
@@ -573,7 +575,11 @@ def find_site(  # type: ignore[no-untyped-def]
                 s1 = (k + 1) % 6
                 # Orbiting clockwise from the one it came from towards the other, the
                 # robot is on the outer side: left of a->b when it came from a.
-                came = came_from(ref_id, from_id, nb[i, a, NB_ID], nb[i, b, NB_ID])
+                a_id = nb[i, a, NB_ID]
+                b_id = nb[i, b, NB_ID]
+                came = came_from(ref_id, from_id, a_id, b_id)
+                if by_order and came == ref_id and from_id != a_id and from_id != b_id:
+                    came = first_met(i, ri, a_id, b_id, came)
                 if came >= 0 and came == nb[i, a, NB_ID]:
                     outer_side = 0
                 elif came >= 0 and came == nb[i, b, NB_ID]:
