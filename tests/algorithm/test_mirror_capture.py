@@ -9,6 +9,10 @@
 - ``mirror_margin_mm``: on seed 33 robot 25 read robot (0, 0) at 54 mm where both sites of
   the pair predict 69-71 mm; 16.5 mm off the mirror ruled the mirror out, while 15 mm off
   the site was within its widened tolerance.
+- ``came_order`` (session 60): on seed 77 robot 11 came from (0, 0) along the row (0, 0),
+  (1, 0), (2, 0), steered by (1, 0) for less than 2 s and then by (2, 0), and stopped
+  above the last two. Taking (2, 0) for the robot it passed first, it put itself below
+  them on (1, -1), and robots 17 and 21 grew a mirrored row on from it.
 """
 
 from __future__ import annotations
@@ -27,11 +31,14 @@ from .traced import SESSION_57_SEARCH
 OFF_SITE_MM = 30.0
 
 
-def remnant_of_28(seed: int, **et: float) -> tuple[bool, float]:
-    """Run dumbbell split y=mid for 4 h: whether the remnant of 28 robots re-formed, and
-    how far (mm) its placed robot farthest from its site stands from it."""
+def remnant_of_28(
+    seed: int, pinned: dict[str, object] = SESSION_57_SEARCH, **et: object
+) -> tuple[bool, float]:
+    """Run dumbbell split y=mid for 4 h with the ``pinned`` options (those of the session
+    that traced the seed) and ``et``: whether the remnant of 28 robots re-formed, and how
+    far (mm) its placed robot farthest from its site stands from it."""
     run = ETRun(RunConfig(shape="dumbbell", seed=seed, damage=("split y=mid",),
-                          max_time_s=4 * 3600, et=ETParams(**{**SESSION_57_SEARCH, **et})))
+                          max_time_s=4 * 3600, et=ETParams(**{**pinned, **et})))
     summary = run.run()
     assert summary["duplicate_tags"] == []
     [component] = [c for c in summary["components"] if c["robots"] == 28]
@@ -51,4 +58,11 @@ def test_the_remnant_reforms_only_without_the_mirror_capture(seed: int, option: 
     formed, worst = remnant_of_28(seed)
     assert formed and worst < OFF_SITE_MM
     formed, worst = remnant_of_28(seed, **{option: 0.0})
+    assert not formed and worst > 2 * OFF_SITE_MM
+
+
+def test_the_remnant_reforms_only_when_the_pair_met_first_decides_the_side() -> None:
+    formed, worst = remnant_of_28(77, {})
+    assert formed and worst < OFF_SITE_MM
+    formed, worst = remnant_of_28(77, {}, came_order="off")
     assert not formed and worst > 2 * OFF_SITE_MM
