@@ -151,13 +151,13 @@ FALSE_ALARM_MODES = ("resume", "regrow")
 #: When a searcher long at the shape may take a site from the robots round it
 #: (``ETParams.pocket``), in the order of their codes in ``ci``.
 POCKET_MODES = ("off", "on", "regrowth", "located")
+POCKET_ON = 1
+POCKET_REGROWTH = 2
+POCKET_LOCATED = 3
 #: ``ETParams.came_order`` modes, in the order of their codes in ``ci`` (``met_order``).
 CAME_ORDER_MODES = ("off", "on", "regrowth")
 CAME_ORDER_ON = 1
 CAME_ORDER_REGROWTH = 2
-POCKET_ON = 1
-POCKET_REGROWTH = 2
-POCKET_LOCATED = 3
 #: The allowed values of each ETParams field that takes one of a few names.
 CHOICES: dict[str, tuple[str, ...]] = {
     "census": CENSUS_METHODS,

@@ -502,7 +502,8 @@ def find_site(  # type: ignore[no-untyped-def]
     ``F_MIRROR_MARGIN`` more than off ``c``'s), or ``c`` is on the outer side of the pair
     for a robot that orbits clockwise (``orbit`` 0; the other side for 1) from the one of
     the two it came from: ``from_id`` if it is one of them, else the reference ``ref_id`` it
-    steers by (see ``came_from``; nothing when it steers by neither). ``c`` must also have
+    steers by (see ``came_from``; nothing when it steers by neither), or with
+    ``ETParams.came_order`` the one of the two it met first (``met_order``). ``c`` must also have
     gene flag 1, be held by no robot it knows of, agree with every placed robot heard since
     ``since`` and, when ``strict``, every known robot of a neighbouring site must have been
     heard since ``since``; and an Active robot must be adjacent to it (the least TS among
