@@ -122,6 +122,7 @@ from etswarm.algorithm.regeneration import (
     announcement_rule,
     catch_up,
     election_rule,
+    from_sibling,
     join_election,
     target_code,
 )
@@ -335,7 +336,8 @@ def ingest(i, k, tick, ri, in_type, in_data, in_dist, nb, nb_dist, ci):  # type:
         return kind
     if kind == MSG_TARGET:
         epoch = near_epoch(ri[i, R_EPOCH] + 1, np.int64(in_data[i, k, 2]), 256)
-        if epoch > ri[i, R_PEND_EPOCH]:
+        leader = np.int64(in_data[i, k, 7]) | (np.int64(in_data[i, k, 8]) << 8)
+        if epoch > ri[i, R_PEND_EPOCH] and not from_sibling(i, ri, epoch, leader, ci):
             ri[i, R_PEND_EPOCH] = epoch
             ri[i, R_PEND_N] = np.int64(in_data[i, k, 3]) | (np.int64(in_data[i, k, 4]) << 8)
             tx = np.int64(in_data[i, k, 5])

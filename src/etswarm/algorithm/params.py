@@ -77,7 +77,8 @@ C_MERGE_PARKED = 60  # 1: a placed robot counts a parked robot beside it as cont
 C_PARKED_OBSTACLE = 61  # 1: a searcher takes a parked robot for an obstacle, not the repository
 C_LONE_KEPT = 62  # 1: a kept robot with no kept neighbour site in the new target searches again
 C_CAME_ORDER = 63  # which of a pair a searcher passed first, by the order it met them (mode)
-N_CI = 64
+C_SIBLING_TARGET = 64  # 1: an electing robot ignores its epoch's target from a higher-ID Leader
+N_CI = 65
 
 #: Values of ``ci[C_RIGHT_OF_WAY]``: never, always, or in the first formation alone (a
 #: thin shape's, ``thin_right_of_way``).
@@ -158,6 +159,9 @@ POCKET_LOCATED = 3
 CAME_ORDER_MODES = ("off", "on", "regrowth")
 CAME_ORDER_ON = 1
 CAME_ORDER_REGROWTH = 2
+#: ``ETParams.sibling_target`` modes: what an electing robot does with the announcement of
+#: the target it elects for when it comes from a Leader of higher ID than its candidate.
+SIBLING_TARGET_MODES = ("adopt", "ignore")
 #: The allowed values of each ETParams field that takes one of a few names.
 CHOICES: dict[str, tuple[str, ...]] = {
     "census": CENSUS_METHODS,
@@ -173,6 +177,7 @@ CHOICES: dict[str, tuple[str, ...]] = {
     "lost_homing": LOST_HOMING_MODES,
     "pocket": POCKET_MODES,
     "came_order": CAME_ORDER_MODES,
+    "sibling_target": SIBLING_TARGET_MODES,
 }
 
 
@@ -677,6 +682,14 @@ class ETParams:
     #: had steered by the first of the pair for less than 2 s took the mirror site, and
     #: a mirrored row of the lattice grew from it).
     came_order: str = "regrowth"
+    #: An electing robot that hears the announcement of a target for the epoch it elects
+    #: for, from a Leader whose ID is higher than the lowest candidate it hears itself:
+    #: "ignore", that Leader is not its own election's (min-ID flooding would have beaten
+    #: it) but a sibling remnant's of the same damage, and the robot goes on electing;
+    #: "adopt", it takes the target as its own (traced on `T` `remove random=0.2` seed 10:
+    #: a searcher of a 3-robot remnant that had elected came within range of the 33-robot
+    #: remnant while it still elected, and all 36 robots grew the 3-cell target).
+    sibling_target: str = "ignore"
 
     def __post_init__(self) -> None:
         for f in fields(self):
@@ -793,6 +806,7 @@ class ETParams:
         ci[C_MERGE_PARKED] = 1 if self.merge_parked == "on" else 0
         ci[C_PARKED_OBSTACLE] = 1 if self.parked_obstacle == "on" else 0
         ci[C_CAME_ORDER] = CAME_ORDER_MODES.index(self.came_order)
+        ci[C_SIBLING_TARGET] = SIBLING_TARGET_MODES.index(self.sibling_target)
         ci[C_FALSE_ALARM] = 1 if self.false_alarm == "resume" else 0
         ci[C_TICKS_REMEMBERED] = (
             ticks(self.remembered_neighbours_s)

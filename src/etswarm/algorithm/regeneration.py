@@ -126,6 +126,7 @@ from etswarm.algorithm.params import (
     C_FALSE_ALARM,
     C_OFFSETS,
     C_REGROW_OFFSETS,
+    C_SIBLING_TARGET,
     C_TICKS_NB_FRESH,
     C_TICKS_REGEN_QUIET,
     REGROWTH_OFFSETS,
@@ -470,6 +471,24 @@ def announcement_rule(i, tick, ri, nb, gene_flag, gene_nn, slot_info, ci):  # ty
             adopt_target(i, tick, ri, nb, slot, pend, leader, gene_flag, gene_nn, slot_info, ci)
             return True
     return False
+
+
+@njit
+def from_sibling(i, ri, epoch, leader, ci):  # type: ignore[no-untyped-def]
+    """Whether robot i should ignore the announcement of target ``epoch`` by Leader
+    ``leader`` (``ETParams.sibling_target`` "ignore"): it is electing for that epoch and
+    hears a lower candidate than that Leader, so the Leader is not its own election's (the
+    lowest ID of a remnant wins its election) but that of a sibling remnant of the same
+    damage, one of whose robots has come within range while this remnant still elects.
+    A relay that names no Leader (``NO_LEADER``: the relaying robot caught up with the
+    target, ``catch_up``) is never ignored."""
+    return (
+        ci[C_SIBLING_TARGET] == 1
+        and ri[i, R_PHASE] == PHASE_ELECTING
+        and epoch == ri[i, R_EPOCH] + 1
+        and leader != NO_LEADER
+        and leader > ri[i, R_LEADER]
+    )
 
 
 @njit

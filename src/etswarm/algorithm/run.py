@@ -18,8 +18,11 @@ from etswarm.algorithm.et_controller import ETController
 from etswarm.algorithm.extent import cells_in, extent_of
 from etswarm.algorithm.layout import LONG_QUEUE_ROBOTS, REPOSITORY_SPACING_MM, plan_layout
 from etswarm.algorithm.memory import (
+    PHASE_NORMAL,
     R_CENSUS,
     R_ELECT_SINCE,
+    R_EPOCH,
+    R_PHASE,
     R_SINCE,
     R_TAG_X,
     R_TAG_Y,
@@ -239,11 +242,11 @@ class ETRun:
         for leader in ctl.pending_requests():
             row = ctl.ri[leader]
             n = int(row[R_CENSUS])
+            group = self._remnant_of(int(leader))
             cells, tx, ty, turn = self._scaled_placement(int(leader), n)
             old_slot = int(row[R_TSLOT])
             slot = ctl.answer(int(leader), cells, n, tx, ty, turn)
             kept = ctl.slot_info[slot, SLOT_SHAPE] == ctl.slot_info[old_slot, SLOT_SHAPE]
-            group = self._radio_group_of(int(leader))
             # The robot's clock: election began, Leader declared, census concluded.
             elected_s = int(row[R_SINCE]) / tps
             done_s = int(row[R_WALK_END]) / tps
@@ -344,6 +347,18 @@ class ETRun:
             if robot in group:
                 return group
         return np.array([robot])
+
+    def _remnant_of(self, leader: int) -> np.ndarray:
+        """IDs of the robots a declaring Leader's census should count: the live robots
+        radio-connected to it, less those that already work for a target of the epoch it
+        elected for. Those belong to a sibling remnant of the same damage that elected
+        first, and one of its robots has come within range (`T` `remove random=0.2`
+        seed 10: a searcher of a 3-robot remnant beside the 33-robot one)."""
+        group = self._radio_group_of(leader)
+        ri = self.controller.ri
+        elected_for = ri[leader, R_EPOCH] + 1
+        sibling = (ri[group, R_EPOCH] == elected_for) & (ri[group, R_PHASE] == PHASE_NORMAL)
+        return group[~sibling]
 
     def _too_small_slots(self) -> np.ndarray:
         """(S,) bool per target slot: the empty target of a remnant too small to regrow

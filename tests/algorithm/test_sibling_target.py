@@ -1,0 +1,98 @@
+"""A remnant that still elects does not take over the target of a sibling remnant.
+
+Traced on ``T`` ``remove random=0.2`` seed 10 (session 61): the removal left a 33-robot
+remnant and a 3-robot one, out of each other's range, and both elected for epoch 1. The
+small one finished first (Leader 38, census 3) and released a searcher, which came within
+range of the big one while it still elected. Its robots heard the announcement of the
+3-cell target for the epoch they elected for, took it for their own Leader's, and all 36
+robots then worked for 3 cells: 33 of them Queued or searching for good, and the summary
+called the remnant formed.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from etswarm.algorithm.memory import (
+    PHASE_ELECTING,
+    PHASE_NORMAL,
+    R_EPOCH,
+    R_LEADER,
+    R_PHASE,
+    allocate,
+)
+from etswarm.algorithm.params import ETParams
+from etswarm.algorithm.regeneration import NO_LEADER, from_sibling
+from etswarm.algorithm.run import ETRun, RunConfig
+from etswarm.errors import EtswarmError
+
+GENE_X0 = -3
+
+
+def electing_robot(candidate: int) -> np.ndarray:
+    """The memory rows of one robot at epoch 0, electing for epoch 1, whose lowest
+    candidate heard is ``candidate``."""
+    ri, _, _ = allocate(1)
+    ri[0, R_EPOCH] = 0
+    ri[0, R_PHASE] = PHASE_ELECTING
+    ri[0, R_LEADER] = candidate
+    return ri
+
+
+def packed(mode: str) -> np.ndarray:
+    ci, _ = ETParams(sibling_target=mode).pack(31, gene_x0=GENE_X0, gene_y0=GENE_X0)
+    return ci
+
+
+def test_a_higher_leader_of_the_epoch_elected_for_is_a_siblings() -> None:
+    ri = electing_robot(candidate=0)
+    assert from_sibling(0, ri, 1, 38, packed("ignore"))
+    assert not from_sibling(0, ri, 1, 38, packed("adopt"))
+
+
+@pytest.mark.parametrize(
+    ("epoch", "leader", "phase"),
+    [
+        (1, 0, PHASE_ELECTING),  # its own candidate's announcement
+        (1, 5, PHASE_NORMAL),  # not electing: catching up is another rule's business
+        (2, 38, PHASE_ELECTING),  # a newer epoch: it missed a whole regeneration
+        (1, NO_LEADER, PHASE_ELECTING),  # relayed by a robot that caught up: no Leader named
+    ],
+)
+def test_other_announcements_are_taken(epoch: int, leader: int, phase: int) -> None:
+    ri = electing_robot(candidate=0 if leader == 0 else 3)
+    ri[0, R_PHASE] = phase
+    assert not from_sibling(0, ri, epoch, leader, packed("ignore"))
+
+
+def test_a_lower_leader_than_the_candidate_is_taken() -> None:
+    """A robot that joined late may not have heard its Leader's ID yet."""
+    ri = electing_robot(candidate=12)
+    assert not from_sibling(0, ri, 1, 4, packed("ignore"))
+
+
+def test_sibling_target_must_be_a_mode() -> None:
+    with pytest.raises(EtswarmError, match="sibling_target must be one of"):
+        ETParams(sibling_target="maybe")
+
+
+def remnants(mode: str) -> list[tuple[int, int, int, bool]]:
+    """``T`` ``remove random=0.2`` seed 10 until it settles (at most 4 h after the
+    damage): per remnant of the summary, (robots, census count, target cells, formed)."""
+    run = ETRun(RunConfig(shape="T", seed=10, damage=("remove random=0.2",),
+                          max_time_s=2440 + 4 * 3600, et=ETParams(sibling_target=mode)))
+    summary = run.run()
+    assert summary["duplicate_tags"] == []
+    assert summary["max_leaders_per_component"] <= 1
+    return sorted(
+        ((c["robots"], c["census_count"], c["target_cells"], c["formed"])
+         for c in summary["components"]), reverse=True
+    )
+
+
+def test_each_remnant_grows_its_own_scaled_shape() -> None:
+    assert remnants("ignore") == [(33, 33, 33, True), (3, 3, 3, True)]
+    # Taking the sibling's announcement, the big remnant grows the 3-cell target.
+    [(robots, count, cells, _)] = remnants("adopt")
+    assert (robots, count, cells) == (36, 3, 3)
