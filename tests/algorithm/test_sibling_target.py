@@ -17,6 +17,7 @@ import pytest
 from etswarm.algorithm.memory import (
     PHASE_ELECTING,
     PHASE_NORMAL,
+    R_ELECT_MIN,
     R_EPOCH,
     R_LEADER,
     R_PHASE,
@@ -37,6 +38,7 @@ def electing_robot(candidate: int) -> np.ndarray:
     ri[0, R_EPOCH] = 0
     ri[0, R_PHASE] = PHASE_ELECTING
     ri[0, R_LEADER] = candidate
+    ri[0, R_ELECT_MIN] = candidate
     return ri
 
 
@@ -63,13 +65,26 @@ def test_a_higher_leader_of_the_epoch_elected_for_is_a_siblings() -> None:
 def test_other_announcements_are_taken(epoch: int, leader: int, phase: int) -> None:
     ri = electing_robot(candidate=0 if leader == 0 else 3)
     ri[0, R_PHASE] = phase
-    assert not from_sibling(0, ri, epoch, leader, packed("ignore"))
+    for mode in ("ignore", "strict"):
+        assert not from_sibling(0, ri, epoch, leader, packed(mode))
 
 
-def test_a_lower_leader_than_the_candidate_is_taken() -> None:
-    """A robot that joined late may not have heard its Leader's ID yet."""
+def test_a_lower_leader_than_the_candidate_is_taken_unless_strict() -> None:
+    """"ignore" takes it (a robot whose entries aged may hear a higher candidate than
+    its Leader); "strict" takes only the lowest candidate heard in the election."""
     ri = electing_robot(candidate=12)
     assert not from_sibling(0, ri, 1, 4, packed("ignore"))
+    assert from_sibling(0, ri, 1, 4, packed("strict"))
+    assert not from_sibling(0, ri, 1, 12, packed("strict"))
+
+
+def test_strict_remembers_the_lowest_candidate_heard() -> None:
+    """R_LEADER falls back to a higher candidate when the entries of the lowest age;
+    the announcement of the lowest is still the robot's own election's."""
+    ri = electing_robot(candidate=12)
+    ri[0, R_ELECT_MIN] = 4
+    assert not from_sibling(0, ri, 1, 4, packed("strict"))
+    assert from_sibling(0, ri, 1, 12, packed("strict"))
 
 
 def test_sibling_target_must_be_a_mode() -> None:
@@ -77,11 +92,11 @@ def test_sibling_target_must_be_a_mode() -> None:
         ETParams(sibling_target="maybe")
 
 
-def remnants(mode: str) -> list[tuple[int, int, int, bool]]:
-    """``T`` ``remove random=0.2`` seed 10 until it settles (at most 4 h after the
-    damage): per remnant of the summary, (robots, census count, target cells, formed)."""
-    run = ETRun(RunConfig(shape="T", seed=10, damage=("remove random=0.2",),
-                          max_time_s=2440 + 4 * 3600, et=ETParams(sibling_target=mode)))
+def remnants(seed: int, mode: str) -> list[tuple[int, int, int, bool]]:
+    """``T`` ``remove random=0.2`` until it settles (at most 4 h after the damage): per
+    remnant of the summary, (robots, census count, target cells, formed)."""
+    run = ETRun(RunConfig(shape="T", seed=seed, damage=("remove random=0.2",),
+                          max_time_s=6 * 3600, et=ETParams(sibling_target=mode)))
     summary = run.run()
     assert summary["duplicate_tags"] == []
     assert summary["max_leaders_per_component"] <= 1
@@ -92,7 +107,18 @@ def remnants(mode: str) -> list[tuple[int, int, int, bool]]:
 
 
 def test_each_remnant_grows_its_own_scaled_shape() -> None:
-    assert remnants("ignore") == [(33, 33, 33, True), (3, 3, 3, True)]
+    """Seed 10: the 3-robot remnant's Leader (38) has a higher ID than the 33-robot
+    remnant's candidates, so "ignore" is enough."""
+    assert remnants(10, "ignore") == [(33, 33, 33, True), (3, 3, 3, True)]
     # Taking the sibling's announcement, the big remnant grows the 3-cell target.
-    [(robots, count, cells, _)] = remnants("adopt")
+    [(robots, count, cells, _)] = remnants(10, "adopt")
     assert (robots, count, cells) == (36, 3, 3)
+
+
+def test_a_sibling_led_by_a_lower_id_is_ignored_only_when_strict() -> None:
+    """Seed 85: the 7-robot remnant's Leader is robot 0. With "strict" the 29-robot
+    remnant elects on its own; the two then grow into contact and elect as one
+    (``merge``), and the 36 robots grow a 36-cell `T`."""
+    assert remnants(85, "strict") == [(36, 36, 36, True)]
+    [(robots, count, cells, _)] = remnants(85, "ignore")
+    assert (robots, count, cells) == (36, 7, 7)

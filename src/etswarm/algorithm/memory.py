@@ -237,7 +237,11 @@ R_ESCAPE_UNTIL = R_PLUNGE_UNTIL + 1
 #: from it (``former_site``). ``NO_SITE`` for none.
 R_FORMER_X = R_ESCAPE_UNTIL + 1
 R_FORMER_Y = R_FORMER_X + 1
-R_FIELDS = R_FORMER_Y + 1
+#: The lowest candidate an electing robot has heard in this election (``R_LEADER`` falls
+#: back when entries age; this does not): an announcement of the epoch it elects for by
+#: any other Leader is a sibling remnant's (``regeneration.from_sibling``).
+R_ELECT_MIN = R_FORMER_Y + 1
+R_FIELDS = R_ELECT_MIN + 1
 
 #: No site (a tag field that holds none: ``R_FORMER_X``, ``search.find_site``'s left site).
 NO_SITE = -(1 << 40)

@@ -77,7 +77,7 @@ C_MERGE_PARKED = 60  # 1: a placed robot counts a parked robot beside it as cont
 C_PARKED_OBSTACLE = 61  # 1: a searcher takes a parked robot for an obstacle, not the repository
 C_LONE_KEPT = 62  # 1: a kept robot with no kept neighbour site in the new target searches again
 C_CAME_ORDER = 63  # which of a pair a searcher passed first, by the order it met them (mode)
-C_SIBLING_TARGET = 64  # 1: an electing robot ignores its epoch's target from a higher-ID Leader
+C_SIBLING_TARGET = 64  # which announcements of its epoch an electing robot ignores (mode)
 N_CI = 65
 
 #: Values of ``ci[C_RIGHT_OF_WAY]``: never, always, or in the first formation alone (a
@@ -161,7 +161,9 @@ CAME_ORDER_ON = 1
 CAME_ORDER_REGROWTH = 2
 #: ``ETParams.sibling_target`` modes: what an electing robot does with the announcement of
 #: the target it elects for when it comes from a Leader of higher ID than its candidate.
-SIBLING_TARGET_MODES = ("adopt", "ignore")
+SIBLING_TARGET_MODES = ("adopt", "ignore", "strict")
+SIBLING_IGNORE = 1
+SIBLING_STRICT = 2
 #: The allowed values of each ETParams field that takes one of a few names.
 CHOICES: dict[str, tuple[str, ...]] = {
     "census": CENSUS_METHODS,
@@ -686,10 +688,12 @@ class ETParams:
     #: for, from a Leader whose ID is higher than the lowest candidate it hears itself:
     #: "ignore", that Leader is not its own election's (min-ID flooding would have beaten
     #: it) but a sibling remnant's of the same damage, and the robot goes on electing;
+    #: "strict", it also ignores one by a lower Leader than it has heard in this election
+    #: (a sibling whose Leader has the lower ID: `T` `remove random=0.2` seed 85);
     #: "adopt", it takes the target as its own (traced on `T` `remove random=0.2` seed 10:
     #: a searcher of a 3-robot remnant that had elected came within range of the 33-robot
     #: remnant while it still elected, and all 36 robots grew the 3-cell target).
-    sibling_target: str = "ignore"
+    sibling_target: str = "strict"
 
     def __post_init__(self) -> None:
         for f in fields(self):

@@ -66,6 +66,7 @@ from etswarm.algorithm.memory import (
     R_COUNT,
     R_COUNT_OFF,
     R_COUNT_SINCE,
+    R_ELECT_MIN,
     R_ELECT_SINCE,
     R_EPOCH,
     R_EXCUSED,
@@ -130,6 +131,7 @@ from etswarm.algorithm.params import (
     C_TICKS_NB_FRESH,
     C_TICKS_REGEN_QUIET,
     REGROWTH_OFFSETS,
+    SIBLING_STRICT,
 )
 from etswarm.algorithm.pinch import pinches_new_target
 from etswarm.algorithm.release import HOPS_NONE
@@ -166,6 +168,7 @@ def start_election(i, tick, ri, ci):  # type: ignore[no-untyped-def]
     ri[i, R_MISSING] = 0  # (placed_rule notes what a Stable robot missed)
     ri[i, R_PHASE] = PHASE_ELECTING
     ri[i, R_LEADER] = i
+    ri[i, R_ELECT_MIN] = i
     ri[i, R_HOP] = 0
     ri[i, R_PARENT] = -1
     ri[i, R_SUBCOUNT] = 1
@@ -193,6 +196,7 @@ def join_election(i, tick, ri, ci):  # type: ignore[no-untyped-def]
     if ci[C_CENSUS_WALK] == 1:
         ri[i, R_CANDIDATE] = 0
         ri[i, R_LEADER] = NO_LEADER
+        ri[i, R_ELECT_MIN] = NO_LEADER
 
 
 @njit
@@ -241,6 +245,7 @@ def election_rule(i, tick, ri, nb, ci, stop):  # type: ignore[no-untyped-def]
     if best_leader != ri[i, R_LEADER] or best_hop != ri[i, R_HOP]:
         ri[i, R_BEST_SINCE] = tick
     ri[i, R_LEADER] = best_leader
+    ri[i, R_ELECT_MIN] = min(ri[i, R_ELECT_MIN], best_leader)
     ri[i, R_HOP] = best_hop
     ri[i, R_PARENT] = parent
     sub = 1
@@ -482,13 +487,17 @@ def from_sibling(i, ri, epoch, leader, ci):  # type: ignore[no-untyped-def]
     damage, one of whose robots has come within range while this remnant still elects.
     A relay that names no Leader (``NO_LEADER``: the relaying robot caught up with the
     target, ``catch_up``) is never ignored."""
-    return (
-        ci[C_SIBLING_TARGET] == 1
-        and ri[i, R_PHASE] == PHASE_ELECTING
-        and epoch == ri[i, R_EPOCH] + 1
-        and leader != NO_LEADER
-        and leader > ri[i, R_LEADER]
-    )
+    mode = ci[C_SIBLING_TARGET]
+    if (
+        mode == 0
+        or ri[i, R_PHASE] != PHASE_ELECTING
+        or epoch != ri[i, R_EPOCH] + 1
+        or leader == NO_LEADER
+    ):
+        return False
+    if mode == SIBLING_STRICT:
+        return leader != ri[i, R_ELECT_MIN]
+    return leader > ri[i, R_LEADER]
 
 
 @njit
