@@ -78,6 +78,13 @@ def test_a_lower_leader_than_the_candidate_is_taken_unless_strict() -> None:
     assert not from_sibling(0, ri, 1, 12, packed("strict"))
 
 
+def test_strict_takes_any_leader_before_a_candidate_is_heard() -> None:
+    """With census walk a robot that did not see the damage stands for no one, and until
+    it hears a candidate it cannot tell its election's Leader from a sibling's."""
+    ri = electing_robot(candidate=NO_LEADER)
+    assert not from_sibling(0, ri, 1, 4, packed("strict"))
+
+
 def test_strict_remembers_the_lowest_candidate_heard() -> None:
     """R_LEADER falls back to a higher candidate when the entries of the lowest age;
     the announcement of the lowest is still the robot's own election's."""

@@ -481,12 +481,15 @@ def announcement_rule(i, tick, ri, nb, gene_flag, gene_nn, slot_info, ci):  # ty
 @njit
 def from_sibling(i, ri, epoch, leader, ci):  # type: ignore[no-untyped-def]
     """Whether robot i should ignore the announcement of target ``epoch`` by Leader
-    ``leader`` (``ETParams.sibling_target`` "ignore"): it is electing for that epoch and
+    ``leader`` (``ETParams.sibling_target``). "ignore": it is electing for that epoch and
     hears a lower candidate than that Leader, so the Leader is not its own election's (the
     lowest ID of a remnant wins its election) but that of a sibling remnant of the same
     damage, one of whose robots has come within range while this remnant still elects.
-    A relay that names no Leader (``NO_LEADER``: the relaying robot caught up with the
-    target, ``catch_up``) is never ignored."""
+    "strict": it is electing for that epoch and the Leader is not the lowest candidate it
+    has heard in this election (``R_ELECT_MIN``). A relay that names no Leader
+    (``NO_LEADER``: the relaying robot caught up with the target, ``catch_up``) is never
+    ignored, nor, with "strict", any announcement to a robot that has heard no candidate
+    yet (census ``walk``: a robot that did not see the damage stands for none)."""
     mode = ci[C_SIBLING_TARGET]
     if (
         mode == 0
@@ -496,7 +499,7 @@ def from_sibling(i, ri, epoch, leader, ci):  # type: ignore[no-untyped-def]
     ):
         return False
     if mode == SIBLING_STRICT:
-        return leader != ri[i, R_ELECT_MIN]
+        return ri[i, R_ELECT_MIN] != NO_LEADER and leader != ri[i, R_ELECT_MIN]
     return leader > ri[i, R_LEADER]
 
 
