@@ -159,10 +159,10 @@ POCKET_LOCATED = 3
 CAME_ORDER_MODES = ("off", "on", "regrowth")
 CAME_ORDER_ON = 1
 CAME_ORDER_REGROWTH = 2
-#: ``ETParams.sibling_target`` modes: what an electing robot does with the announcement of
-#: the target it elects for when it comes from a Leader of higher ID than its candidate.
+#: ``ETParams.sibling_target`` modes, in the order of their codes in ``ci``: which
+#: announcements of the target it elects for an electing robot takes as its own.
 SIBLING_TARGET_MODES = ("adopt", "ignore", "strict")
-SIBLING_IGNORE = 1
+SIBLING_ADOPT = 0
 SIBLING_STRICT = 2
 #: The allowed values of each ETParams field that takes one of a few names.
 CHOICES: dict[str, tuple[str, ...]] = {

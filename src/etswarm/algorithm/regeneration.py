@@ -131,6 +131,7 @@ from etswarm.algorithm.params import (
     C_TICKS_NB_FRESH,
     C_TICKS_REGEN_QUIET,
     REGROWTH_OFFSETS,
+    SIBLING_ADOPT,
     SIBLING_STRICT,
 )
 from etswarm.algorithm.pinch import pinches_new_target
@@ -492,7 +493,7 @@ def from_sibling(i, ri, epoch, leader, ci):  # type: ignore[no-untyped-def]
     yet (census ``walk``: a robot that did not see the damage stands for none)."""
     mode = ci[C_SIBLING_TARGET]
     if (
-        mode == 0
+        mode == SIBLING_ADOPT
         or ri[i, R_PHASE] != PHASE_ELECTING
         or epoch != ri[i, R_EPOCH] + 1
         or leader == NO_LEADER
