@@ -67,10 +67,10 @@ def test_a_searcher_says_whether_it_hears_a_stationary_robot() -> None:
     out_on = np.zeros(1, dtype=np.bool_)
     out_type = np.zeros(1, dtype=np.uint8)
     out_data = np.zeros((1, 9), dtype=np.uint8)
-    encode(0, 10, ri, out_on, out_type, out_data)
+    encode(0, 10, ri, 0, out_on, out_type, out_data)
     assert out_data[0, 6] == 1
     ri[0, R_LOST_SINCE] = 5
-    encode(0, 10, ri, out_on, out_type, out_data)
+    encode(0, 10, ri, 0, out_on, out_type, out_data)
     assert out_data[0, 6] == 0
 
 

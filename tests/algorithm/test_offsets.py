@@ -25,6 +25,7 @@ from etswarm.algorithm.memory import (
     R_TAG_X,
     R_TAG_Y,
     R_TS,
+    SLOT_FIELDS,
     allocate,
 )
 from etswarm.algorithm.offsets import (
@@ -152,11 +153,12 @@ def test_offsets_travel_in_the_status_message(fine):
     out_on = np.zeros(2, dtype=np.bool_)
     out_type = np.zeros(2, dtype=np.uint8)
     out_data = np.zeros((2, 9), dtype=np.uint8)
-    encode(0, 0, ri, out_on, out_type, out_data)
+    encode(0, 0, ri, 0, out_on, out_type, out_data)
     in_type = out_type[[0, 0]].reshape(2, 1)
     in_data = out_data[[0, 0]].reshape(2, 1, 9)
     in_dist = np.full((2, 1), 40.0)
-    ingest(1, 0, 5, ri, in_type, in_data, in_dist, nb, nb_dist, ci)
+    slot_info = np.zeros((1, SLOT_FIELDS), dtype=np.int64)
+    ingest(1, 0, 5, ri, in_type, in_data, in_dist, nb, nb_dist, slot_info, ci)
     row = int(np.flatnonzero(nb[1, :, NB_ID] == 0)[0])
     assert (nb[1, row, NB_TX], nb[1, row, NB_TY]) == (3, -2)
     assert nb[1, row, NB_OX] == sent_offset(fine)

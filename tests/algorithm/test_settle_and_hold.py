@@ -130,9 +130,9 @@ def test_the_hold_passes_along_the_repository_one_unit_shorter() -> None:
     out_on = np.zeros(10, dtype=np.bool_)
     out_type = np.zeros(10, dtype=np.uint8)
     out_data = np.zeros((10, 9), dtype=np.uint8)
-    encode(0, TICK, ri, out_on, out_type, out_data)
+    encode(0, TICK, ri, 0, out_on, out_type, out_data)
     assert out_data[0, 6] == 9
-    encode(0, TICK + 9 * HOLD_UNIT_TICKS, ri, out_on, out_type, out_data)
+    encode(0, TICK + 9 * HOLD_UNIT_TICKS, ri, 0, out_on, out_type, out_data)
     assert out_data[0, 6] == 0  # over: it passes nothing on, so no hold circulates
 
 
@@ -142,10 +142,10 @@ def test_a_searcher_says_when_it_yields() -> None:
     out_on = np.zeros(1, dtype=np.bool_)
     out_type = np.zeros(1, dtype=np.uint8)
     out_data = np.zeros((1, 9), dtype=np.uint8)
-    encode(0, 10, ri, out_on, out_type, out_data)
+    encode(0, 10, ri, 0, out_on, out_type, out_data)
     assert not out_data[0, 6] & YIELDING_BIT
     ri[0, R_YIELD_SINCE] = 5
-    encode(0, 10, ri, out_on, out_type, out_data)
+    encode(0, 10, ri, 0, out_on, out_type, out_data)
     assert out_data[0, 6] & YIELDING_BIT
 
 

@@ -84,6 +84,7 @@ from etswarm.algorithm.memory import (
     R_WALK_SEEN,
     R_YIELD_SINCE,
     SLOT_LIMIT,
+    SLOT_SIG,
     SLOT_TX,
     SLOT_TY,
     SLOT_WX,
@@ -113,6 +114,7 @@ from etswarm.algorithm.params import (
     C_EVAL_EVERY,
     C_GOSSIP_EVERY,
     C_HOLE_WATCH,
+    C_STATUS_SIG,
     C_STILL_READINGS,
     C_TICKS_NB_FRESH,
 )
@@ -283,7 +285,7 @@ def file_held(i, k, tick, ri, in_type, in_data, in_dist, nb, nb_dist, held, slot
 
 
 @njit(inline="always")
-def ingest(i, k, tick, ri, in_type, in_data, in_dist, nb, nb_dist, ci):  # type: ignore[no-untyped-def]
+def ingest(i, k, tick, ri, in_type, in_data, in_dist, nb, nb_dist, slot_info, ci):  # type: ignore[no-untyped-def]
     """Store message k of robot i's inbox in its neighbour table (layouts in ``messages``).
 
     Returns the message kind, plus ``CHANGED`` for a status message that filled a new row
@@ -358,6 +360,12 @@ def ingest(i, k, tick, ri, in_type, in_data, in_dist, nb, nb_dist, ci):  # type:
     if still_since_last and stands_still(nb[i, slot, NB_STATE]) and stands_still(state):
         average_reading(i, slot, last_mean, last_count, ci[C_STILL_READINGS], nb, nb_dist)
     nb[i, slot, NB_STATE] = state
+    if ci[C_STATUS_SIG] != 0 and own > 0 and nb[i, slot, NB_EPOCH] == own and (
+        np.int64(in_data[i, k, 2]) >> 4 != slot_info[ri[i, R_TSLOT], SLOT_SIG]
+    ):
+        # A sibling remnant's robot: the same epoch, another target (``NB_OTHER``, as a
+        # held-sites message with another signature marks it; a match clears nothing).
+        nb[i, slot, NB_OTHER] = own + 1
     if state >= INACTIVE:
         tx = np.int64(in_data[i, k, 3])
         ty = np.int64(in_data[i, k, 4])
@@ -411,11 +419,21 @@ def idle_wake(i, k, tick, wake, ri, in_data, ci):  # type: ignore[no-untyped-def
 
 
 @njit(inline="always")
-def encode(i, tick, ri, out_on, out_type, out_data):  # type: ignore[no-untyped-def]
+def status_bits(i, ri, slot_info, ci):  # type: ignore[no-untyped-def]
+    """The high half of byte 2 of robot i's status: with ``ETParams.status_signature``, the
+    four signature bits of the target it works for (``SLOT_SIG``), else 0."""
+    if ci[C_STATUS_SIG] == 0:
+        return 0
+    return slot_info[ri[i, R_TSLOT], SLOT_SIG] << 4
+
+
+@njit(inline="always")
+def encode(i, tick, ri, bits, out_on, out_type, out_data):  # type: ignore[no-untyped-def]
     """Write robot i's next broadcast (layouts in ``messages``): its election message while
     electing (every other period its status instead while census walking, see
     ``census_walk.sends_tag``); for a while after adopting a scaled target, every other
-    period its announcement; otherwise its status."""
+    period its announcement; otherwise its status, with ``bits`` (``status_bits``) in the
+    high half of byte 2."""
     out_on[i] = True
     out_data[i, 0] = i & 0xFF
     out_data[i, 1] = (i >> 8) & 0xFF
@@ -450,7 +468,7 @@ def encode(i, tick, ri, out_on, out_type, out_data):  # type: ignore[no-untyped-
         return
     state = ri[i, R_STATE]
     out_type[i] = MSG_STATUS | ((ri[i, R_EPOCH] & 31) << EPOCH_SHIFT)
-    out_data[i, 2] = state
+    out_data[i, 2] = state | bits
     if state >= INACTIVE:
         out_data[i, 3] = ri[i, R_TAG_X] & 0xFF
         out_data[i, 4] = ri[i, R_TAG_Y] & 0xFF
@@ -486,7 +504,7 @@ def encode_placed(i, tick, ri, nb, ci, held, slot_info, out_on, out_type, out_da
     gossiping = gossip_due(tick, every, GOSSIP_PERIOD_TICKS)
     if gossiping and out_type[i] & KIND_MASK == MSG_HELD:
         return  # the chunk of this window is written already
-    encode(i, tick, ri, out_on, out_type, out_data)
+    encode(i, tick, ri, status_bits(i, ri, slot_info, ci), out_on, out_type, out_data)
     if gossiping and out_type[i] & KIND_MASK == MSG_STATUS:  # not while relaying a target
         slot = ri[i, R_TSLOT]
         encode_held(
@@ -572,7 +590,7 @@ def et_part(  # type: ignore[no-untyped-def]
             # asked for now, the two misses overlap instead of following each other.
             prefetch_field(i, NB_EPOCH, nb)
         for k in range(count):
-            kind = ingest(i, k, tick, ri, in_type, in_data, in_dist, nb, nb_dist, ci)
+            kind = ingest(i, k, tick, ri, in_type, in_data, in_dist, nb, nb_dist, slot_info, ci)
             if kind == MSG_STATUS:
                 new_msgs = True
                 if np.int64(in_data[i, k, 2]) & 0x0F == LEADER:
@@ -623,7 +641,7 @@ def et_part(  # type: ignore[no-untyped-def]
         if ri[i, R_PHASE] == PHASE_ELECTING and walking(ri[i, R_WALK]):
             walk_rule(i, tick, ri, nb, nb_dist, motor, walk_seen, gene_flag[slot], ci, cf, stop)
             led[i] = ri[i, R_STATE]
-            encode(i, tick, ri, out_on, out_type, out_data)
+            encode(i, tick, ri, status_bits(i, ri, slot_info, ci), out_on, out_type, out_data)
             continue
         if ri[i, R_PHASE] == PHASE_ELECTING:
             motor[i] = STOP
@@ -676,7 +694,7 @@ def et_part(  # type: ignore[no-untyped-def]
         if ci[C_GOSSIP_EVERY] > 0 and INACTIVE <= ri[i, R_STATE] <= STABLE:
             encode_placed(i, tick, ri, nb, ci, held, slot_info, out_on, out_type, out_data)
         else:
-            encode(i, tick, ri, out_on, out_type, out_data)
+            encode(i, tick, ri, status_bits(i, ri, slot_info, ci), out_on, out_type, out_data)
         if (
             ci[C_HOLE_WATCH] > 0
             and INACTIVE <= ri[i, R_STATE] <= STABLE

@@ -37,10 +37,12 @@ from etswarm.algorithm.memory import (
     R_WALK,
     SLOT_FIELDS,
     SLOT_SHAPE,
+    SLOT_SIG,
     SLOT_WX,
     SLOT_WY,
     allocate,
 )
+from etswarm.algorithm.messages import status_nibble, target_signature
 from etswarm.algorithm.params import (
     C_FIRST_PLUNGE,
     C_HOLE_WATCH,
@@ -49,6 +51,7 @@ from etswarm.algorithm.params import (
     NOMINAL_MOTION,
     ETParams,
 )
+from etswarm.algorithm.regeneration import target_code
 from etswarm.algorithm.states import PLACED_STATES, State
 from etswarm.algorithm.wave import HOPS_SHIFT, nn_of, seed_hops
 from etswarm.shapes.lattice import depths, enclosed_cells, neighbour_counts, sort_cells
@@ -160,7 +163,10 @@ class ETController:
                 if len(holes):
                     self.ci[C_HOLE_WATCH] = self.hole_watch_ticks
             self.gene_nn[slot, gx, gy] = neighbour_counts(cells)
-        self.slot_info[slot] = (len(cells), release_limit, tx, ty, 1, *window, slot, turn)
+        self.slot_info[slot] = (len(cells), release_limit, tx, ty, 1, *window, slot, turn, 0)
+        # what each robot of the target works out from the announcement it heard
+        signature = target_signature(target_code(self.slot_info, slot), tx, ty)
+        self.slot_info[slot, SLOT_SIG] = status_nibble(signature)
         key = sort_cells(cells)
         for other, other_cells in enumerate(self.slot_cells):
             if np.array_equal(sort_cells(other_cells), key):

@@ -290,7 +290,8 @@ SLOT_WX = 5  # origin of the searchers' memory window (see ``site_memory``): lea
 SLOT_WY = 6
 SLOT_SHAPE = 7  # the first slot holding the same cells (the same target, wherever found)
 SLOT_TURN = 8  # 60° turns of scale(bitmap, n) before the translation (``lattice.turn_cells``)
-SLOT_FIELDS = 9
+SLOT_SIG = 9  # ``messages.status_nibble`` of the target's signature (its n and placement)
+SLOT_FIELDS = 10
 
 #: Neighbour-table slots per robot (a lattice site has 6 neighbours and 6 at ~1.73 d).
 NB_SLOTS = 16

@@ -26,6 +26,9 @@ byte   placed robot (Inactive ..   Queued / Search robot
 8      offset y (int8, 0.5 mm)     robots released so far, high byte
 =====  ==========================  ==============================================
 
+With ``ETParams.status_signature`` on, the high four bits of byte 2 carry
+``status_nibble`` of the sender's target signature (the state code keeps the low four).
+
 Election message (kind 2; Danger and Leader robots): bytes 0-1 robot ID, 2-3 lowest ID
 heard (the leader candidate), 4 hops from it, 5-6 parent ID (0xFFFF: none), 7-8 robots
 in this robot's subtree. Target message (kind 3; relayed for a while after a scaled target
@@ -131,3 +134,11 @@ def target_signature(n, tx, ty):  # type: ignore[no-untyped-def]
     h ^= h >> 11
     h = (h * 0x2C1B) & 0xFFFFFF
     return (h ^ (h >> 8) ^ (h >> 16)) & 0xFF
+
+
+@njit(inline="always")
+def status_nibble(signature):  # type: ignore[no-untyped-def]
+    """The four bits of a target signature (``target_signature``) that a status carries in
+    the high half of its byte 2 (``ETParams.status_signature``): two different targets
+    share them once in 16."""
+    return (signature ^ (signature >> 4)) & 0x0F

@@ -78,7 +78,8 @@ C_PARKED_OBSTACLE = 61  # 1: a searcher takes a parked robot for an obstacle, no
 C_LONE_KEPT = 62  # 1: a kept robot with no kept neighbour site in the new target searches again
 C_CAME_ORDER = 63  # which of a pair a searcher passed first, by the order it met them (mode)
 C_SIBLING_TARGET = 64  # which announcements of its epoch an electing robot ignores (mode)
-N_CI = 65
+C_STATUS_SIG = 65  # a status carries its target's signature (4 bits, ``messages``): mode
+N_CI = 66
 
 #: Values of ``ci[C_RIGHT_OF_WAY]``: never, always, or in the first formation alone (a
 #: thin shape's, ``thin_right_of_way``).
@@ -164,6 +165,9 @@ CAME_ORDER_REGROWTH = 2
 SIBLING_TARGET_MODES = ("adopt", "ignore", "strict")
 SIBLING_ADOPT = 0
 SIBLING_STRICT = 2
+#: ``ETParams.status_signature`` modes, in the order of their codes in ``ci``.
+STATUS_SIGNATURE_MODES = ("off", "on", "placed")
+STATUS_SIG_ON = 1
 #: The allowed values of each ETParams field that takes one of a few names.
 CHOICES: dict[str, tuple[str, ...]] = {
     "census": CENSUS_METHODS,
@@ -180,6 +184,7 @@ CHOICES: dict[str, tuple[str, ...]] = {
     "pocket": POCKET_MODES,
     "came_order": CAME_ORDER_MODES,
     "sibling_target": SIBLING_TARGET_MODES,
+    "status_signature": STATUS_SIGNATURE_MODES,
 }
 
 
@@ -694,6 +699,19 @@ class ETParams:
     #: a searcher of a 3-robot remnant that had elected came within range of the 33-robot
     #: remnant while it still elected, and all 36 robots grew the 3-cell target).
     sibling_target: str = "strict"
+    #: "on": every status carries four bits of its sender's target signature (the high
+    #: half of byte 2, ``messages.status_nibble``), so that after damage a robot tells a
+    #: sibling remnant's robots (the same epoch, another target) from its own at once: a
+    #: searcher takes a sibling's Queued robot for an obstacle, not for its repository, and
+    #: a sibling's placed robot for foreign (as ``signed_foreign`` does from the rarer
+    #: held-sites message), and a Queued robot takes no release count or rank from a
+    #: sibling's robots. Traced on dumbbell `split x=mid` seed 80 (session 62): two lost
+    #: searchers of the right half reached the left half while it still had Queued robots,
+    #: made their home there and went round it for four hours. "placed": the same, but a
+    #: sibling's Queued robot still guides a searcher as its own repository does (a lost
+    #: searcher then stays near the sibling, often beside its own remnant, until the
+    #: sibling's repository is placed). "off": bits left 0 and unread.
+    status_signature: str = "off"
 
     def __post_init__(self) -> None:
         for f in fields(self):
@@ -811,6 +829,7 @@ class ETParams:
         ci[C_PARKED_OBSTACLE] = 1 if self.parked_obstacle == "on" else 0
         ci[C_CAME_ORDER] = CAME_ORDER_MODES.index(self.came_order)
         ci[C_SIBLING_TARGET] = SIBLING_TARGET_MODES.index(self.sibling_target)
+        ci[C_STATUS_SIG] = STATUS_SIGNATURE_MODES.index(self.status_signature)
         ci[C_FALSE_ALARM] = 1 if self.false_alarm == "resume" else 0
         ci[C_TICKS_REMEMBERED] = (
             ticks(self.remembered_neighbours_s)

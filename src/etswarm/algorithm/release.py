@@ -50,6 +50,7 @@ from etswarm.algorithm.memory import (
 from etswarm.algorithm.messages import HOLD_UNIT_TICKS, YIELDING_BIT
 from etswarm.algorithm.params import (
     C_RELEASE_FAR,
+    C_STATUS_SIG,
     C_TICKS_CLEAR,
     C_TICKS_CLEAR_FIRST,
     C_TICKS_CROWDED,
@@ -60,7 +61,7 @@ from etswarm.algorithm.params import (
     C_TICKS_RELEASE,
 )
 from etswarm.algorithm.parked import HOPS_PARKED
-from etswarm.algorithm.search import begin_search
+from etswarm.algorithm.search import begin_search, sibling
 
 #: Hop count of a Queued robot that knows no way to the shape (also the largest count).
 HOPS_NONE = 255
@@ -159,10 +160,13 @@ def queued_rule(i, tick, ri, nb, ci, limit):  # type: ignore[no-untyped-def]
     ranked = not regrowth and ci[C_TICKS_RANK_WAIT] > 0
     rank = ri[i, R_QRANK]
     floor_rank = ri[i, R_FLOOR_RANK]
+    status_sig = ci[C_STATUS_SIG] != 0
     for m in range(nb.shape[1]):
         sid = nb[i, m, NB_ID]
         if sid < 0 or nb[i, m, NB_EPOCH] != epoch:
             continue  # empty, or a robot still working for an older target
+        if status_sig and sibling(i, m, nb):
+            continue  # a sibling remnant's: its count and rank are of another repository
         st = nb[i, m, NB_STATE]
         if st == SEARCH:
             last_searcher = max(last_searcher, nb[i, m, NB_LAST])

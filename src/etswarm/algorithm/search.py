@@ -117,6 +117,7 @@ from etswarm.algorithm.params import (
     C_SECOND_RING,
     C_SETTLE_RETRIES,
     C_SIGNED_FOREIGN,
+    C_STATUS_SIG,
     C_TICKS_COOLDOWN,
     C_TICKS_FROM_RETURN,
     C_TICKS_HOVER,
@@ -156,6 +157,7 @@ from etswarm.algorithm.params import (
     POCKET_REGROWTH,
     RIGHT_OF_WAY_ALWAYS,
     RIGHT_OF_WAY_FIRST_GROWTH,
+    STATUS_SIG_ON,
 )
 from etswarm.algorithm.parked import parked
 from etswarm.algorithm.pinch import too_far_off, would_pinch
@@ -409,8 +411,16 @@ def foreign(i, m, nb, gene_flag, ci):  # type: ignore[no-untyped-def]
     siblings' scaled targets may share tags."""
     if off_target(i, m, nb, gene_flag, ci):
         return True
+    return ci[C_SIGNED_FOREIGN] == 1 and sibling(i, m, nb)
+
+
+@njit(inline="always")
+def sibling(i, m, nb):  # type: ignore[no-untyped-def]
+    """Robot m of robot i's table works for another target of the epoch it works for: a
+    sibling remnant's (its held-sites message, or with ``ETParams.status_signature`` its
+    status, named another target, ``NB_OTHER``)."""
     other = nb[i, m, NB_OTHER]
-    return ci[C_SIGNED_FOREIGN] == 1 and other > 0 and other == nb[i, m, NB_EPOCH] + 1
+    return other > 0 and other == nb[i, m, NB_EPOCH] + 1
 
 
 @njit(inline="always")
@@ -814,6 +824,7 @@ def search_rule(  # type: ignore[no-untyped-def]
     look_for_beacon = ci[C_LOST_BEACON] == 1
     avoid_foreign = ci[C_AVOID_FOREIGN] == 1
     parked_obstacle = ci[C_PARKED_OBSTACLE] == 1
+    status_sig = ci[C_STATUS_SIG] == STATUS_SIG_ON
     right_of_way = ci[C_RIGHT_OF_WAY] == RIGHT_OF_WAY_ALWAYS or (
         ci[C_RIGHT_OF_WAY] == RIGHT_OF_WAY_FIRST_GROWTH and first_growth(i, ri)
     )
@@ -842,8 +853,8 @@ def search_rule(  # type: ignore[no-untyped-def]
             elif est < placed_est:
                 placed_est = est
                 placed_slot = m
-        elif parked_obstacle and parked(i, m, nb):
-            if est < foreign_est:  # of a remnant that grows nothing: an obstacle
+        elif (parked_obstacle and parked(i, m, nb)) or (status_sig and sibling(i, m, nb)):
+            if est < foreign_est:  # of a remnant that grows nothing, or a sibling's: an obstacle
                 foreign_est = est
                 foreign_slot = m
         elif est < queued_est:
