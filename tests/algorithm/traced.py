@@ -3,10 +3,15 @@ move their seeds off the situation they were written for."""
 
 from etswarm.sim.params import SimParams
 
+#: Until session 62 a status carried no bits of its sender's target, and a sibling
+#: remnant's robot was foreign to a searcher only by its tag or its held-sites message;
+#: regrowths traced before then run as described with this.
+SESSION_61_REGROWTH = {"status_signature": "off"}
+
 #: Until session 59 a searcher that came to a pair from a robot outside it took the one
 #: it steered by for the one it passed first, after damage too (``met_order``);
 #: regrowths traced before then run as described with this.
-SESSION_59_REGROWTH = {"came_order": "off"}
+SESSION_59_REGROWTH = {"came_order": "off", **SESSION_61_REGROWTH}
 
 #: Until session 59 a searcher edge-followed a robot parked by a too-small remnant as any
 #: Queued robot, a placed robot beside one did not elect again with it, and a robot kept on

@@ -699,19 +699,20 @@ class ETParams:
     #: a searcher of a 3-robot remnant that had elected came within range of the 33-robot
     #: remnant while it still elected, and all 36 robots grew the 3-cell target).
     sibling_target: str = "strict"
-    #: "on": every status carries four bits of its sender's target signature (the high
-    #: half of byte 2, ``messages.status_nibble``), so that after damage a robot tells a
-    #: sibling remnant's robots (the same epoch, another target) from its own at once: a
-    #: searcher takes a sibling's Queued robot for an obstacle, not for its repository, and
-    #: a sibling's placed robot for foreign (as ``signed_foreign`` does from the rarer
-    #: held-sites message), and a Queued robot takes no release count or rank from a
-    #: sibling's robots. Traced on dumbbell `split x=mid` seed 80 (session 62): two lost
-    #: searchers of the right half reached the left half while it still had Queued robots,
-    #: made their home there and went round it for four hours. "placed": the same, but a
-    #: sibling's Queued robot still guides a searcher as its own repository does (a lost
-    #: searcher then stays near the sibling, often beside its own remnant, until the
-    #: sibling's repository is placed). "off": bits left 0 and unread.
-    status_signature: str = "off"
+    #: Every status carries four bits of its sender's target signature (the high half of
+    #: byte 2, ``messages.status_nibble``), so that after damage a robot tells a sibling
+    #: remnant's robots (the same epoch, another target) from its own at the first status
+    #: it hears: "placed", a sibling's placed robot is foreign to a searcher whatever its
+    #: tag (as ``signed_foreign`` makes it only once its rarer held-sites message is
+    #: heard), and a Queued robot takes no release count or rank from a sibling's robots.
+    #: Traced on dumbbell `split x=mid` seed 80 (session 62): two lost searchers of the
+    #: right half reached the left half, made their home among its robots, whose tags are
+    #: sites of their own target too, and went round it for four hours. "on": a searcher
+    #: also takes a sibling's Queued robot for an obstacle, not for its repository; then
+    #: a lost searcher near a sibling has nothing to hold on to, and on `H` `split y`,
+    #: whose legs stand side by side, three such runs stopped re-forming (seeds 0-39, 4
+    #: lost, none gained). "off": the bits are 0 and unread, as before session 62.
+    status_signature: str = "placed"
 
     def __post_init__(self) -> None:
         for f in fields(self):
