@@ -26,7 +26,7 @@ byte   placed robot (Inactive ..   Queued / Search robot
 8      offset y (int8, 0.5 mm)     robots released so far, high byte
 =====  ==========================  ==============================================
 
-With ``ETParams.status_signature`` on, the high four bits of byte 2 carry
+Unless ``ETParams.status_signature`` is "off", the high four bits of byte 2 carry
 ``status_nibble`` of the sender's target signature (the state code keeps the low four).
 
 Election message (kind 2; Danger and Leader robots): bytes 0-1 robot ID, 2-3 lowest ID
