@@ -25,8 +25,10 @@ from etswarm.algorithm.memory import (
 )
 from etswarm.algorithm.params import ETParams
 from etswarm.algorithm.regeneration import NO_LEADER, from_sibling
-from etswarm.algorithm.run import ETRun, RunConfig
+from etswarm.algorithm.run import RunConfig
 from etswarm.errors import EtswarmError
+
+from .remnant_rows import remnant_rows
 
 GENE_X0 = -3
 
@@ -102,15 +104,8 @@ def test_sibling_target_must_be_a_mode() -> None:
 def remnants(seed: int, mode: str) -> list[tuple[int, int, int, bool]]:
     """``T`` ``remove random=0.2`` until it settles (at most 4 h after the damage): per
     remnant of the summary, (robots, census count, target cells, formed)."""
-    run = ETRun(RunConfig(shape="T", seed=seed, damage=("remove random=0.2",),
-                          max_time_s=6 * 3600, et=ETParams(sibling_target=mode)))
-    summary = run.run()
-    assert summary["duplicate_tags"] == []
-    assert summary["max_leaders_per_component"] <= 1
-    return sorted(
-        ((c["robots"], c["census_count"], c["target_cells"], c["formed"])
-         for c in summary["components"]), reverse=True
-    )
+    return remnant_rows(RunConfig(shape="T", seed=seed, damage=("remove random=0.2",),
+                                  max_time_s=6 * 3600, et=ETParams(sibling_target=mode)))
 
 
 def test_each_remnant_grows_its_own_scaled_shape() -> None:

@@ -39,10 +39,12 @@ from etswarm.algorithm.messages import (
 )
 from etswarm.algorithm.params import ETParams
 from etswarm.algorithm.regeneration import TURN_CODE
-from etswarm.algorithm.run import ETRun, RunConfig
+from etswarm.algorithm.run import RunConfig
 from etswarm.algorithm.search import foreign, sibling
 from etswarm.algorithm.states import State
 from etswarm.errors import EtswarmError
+
+from .remnant_rows import remnant_rows
 
 GENE_X0 = -3
 OWN_BITS = 6
@@ -158,16 +160,9 @@ def test_both_modes_send_and_read_the_bits(mode: str) -> None:
 def remnants(mode: str) -> list[tuple[int, int | None, int, bool]]:
     """dumbbell ``split x=mid`` seed 80, 4 h from the damage at most: per remnant of the
     summary, (robots, census count, target cells, formed)."""
-    et = ETParams(status_signature=mode)
-    run = ETRun(RunConfig(shape="dumbbell", seed=80, damage=("split x=mid",),
-                          max_time_s=18500, census="tree", et=et))
-    summary = run.run()
-    assert summary["duplicate_tags"] == []
-    assert summary["max_leaders_per_component"] <= 1
-    return sorted(
-        ((c["robots"], c["census_count"], c["target_cells"], c["formed"])
-         for c in summary["components"]), reverse=True
-    )
+    return remnant_rows(RunConfig(shape="dumbbell", seed=80, damage=("split x=mid",),
+                                  max_time_s=18500, census="tree",
+                                  et=ETParams(status_signature=mode)))
 
 
 def test_lost_searchers_do_not_make_their_home_at_the_sibling() -> None:
