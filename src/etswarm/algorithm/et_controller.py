@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from etswarm.algorithm.controller import et_part, et_rest, et_step
+from etswarm.algorithm.controller import et_part, et_rest, et_step, slot_signature
 from etswarm.algorithm.layout import Layout
 from etswarm.algorithm.memory import (
     HOLE_FLAG,
@@ -42,7 +42,7 @@ from etswarm.algorithm.memory import (
     SLOT_WY,
     allocate,
 )
-from etswarm.algorithm.messages import status_nibble, target_signature
+from etswarm.algorithm.messages import status_nibble
 from etswarm.algorithm.params import (
     C_FIRST_PLUNGE,
     C_HOLE_WATCH,
@@ -51,7 +51,6 @@ from etswarm.algorithm.params import (
     NOMINAL_MOTION,
     ETParams,
 )
-from etswarm.algorithm.regeneration import target_code
 from etswarm.algorithm.states import PLACED_STATES, State
 from etswarm.algorithm.wave import HOPS_SHIFT, nn_of, seed_hops
 from etswarm.shapes.lattice import depths, enclosed_cells, neighbour_counts, sort_cells
@@ -165,8 +164,7 @@ class ETController:
             self.gene_nn[slot, gx, gy] = neighbour_counts(cells)
         self.slot_info[slot] = (len(cells), release_limit, tx, ty, 1, *window, slot, turn, 0)
         # what each robot of the target works out from the announcement it heard
-        signature = target_signature(target_code(self.slot_info, slot), tx, ty)
-        self.slot_info[slot, SLOT_SIG] = status_nibble(signature)
+        self.slot_info[slot, SLOT_SIG] = status_nibble(slot_signature(slot, self.slot_info))
         key = sort_cells(cells)
         for other, other_cells in enumerate(self.slot_cells):
             if np.array_equal(sort_cells(other_cells), key):
