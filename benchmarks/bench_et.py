@@ -211,7 +211,8 @@ def formation(
 ) -> None:
     """Formation figures over seeds ``first_seed .. first_seed + seeds - 1`` of each shape;
     with ``out``, every run's JSON summary too, one line each (shape by shape, seed order).
-    "false alarms": runs in which an election kept the target (``false_alarm``)."""
+    "false alarms": runs in which an election kept the target (``false_alarm``); "torn":
+    formed runs whose robots stand torn apart somewhere (``stretched_links``)."""
     print(
         f"load average {os.getloadavg()}, {jobs} job(s), ET options {et_options or 'default'}, "
         f"seeds {first_seed}-{first_seed + seeds - 1}, "
@@ -227,10 +228,10 @@ def formation(
         }
     print(
         f"{'shape':>10} {'formed':>8} {'median sim (min)':>17} {'median wall (s)':>16} "
-        f"{'median jaccard':>15} {'shared tags':>12} {'false alarms':>13}"
+        f"{'median jaccard':>15} {'shared tags':>12} {'false alarms':>13} {'torn':>5}"
     )
     for shape in shapes:
-        times, walls, jac, formed, shared, kept = [], [], [], 0, 0, 0
+        times, walls, jac, formed, shared, kept, torn = [], [], [], 0, 0, 0, 0
         for seed in seed_range:
             s = futures[shape, seed].result()
             if out is not None:
@@ -239,13 +240,14 @@ def formation(
             formed += s["formed"]
             if s["formed"]:
                 times.append(s["formation_time_s"] / 60)
+                torn += any(c.get("stretched_links") for c in s["components"])
             walls.append(s["wall_time_s"])
             jac.append(s["jaccard"])
             shared += bool(s["duplicate_tags"])  # runs with a tag held by two robots
         med = f"{statistics.median(times):.1f}" if times else "-"
         print(
             f"{shape:>10} {formed:>4}/{seeds:<3} {med:>17} {statistics.median(walls):>16.1f} "
-            f"{statistics.median(jac):>15.3f} {shared:>12} {kept:>13}"
+            f"{statistics.median(jac):>15.3f} {shared:>12} {kept:>13} {torn:>5}"
         )
         if out is not None:
             out.flush()

@@ -31,6 +31,8 @@ def test_triangle_forms_at_loss_02(seed: int) -> None:
     assert summary["duplicate_tags"] == []
     assert summary["formation_time_s"] is not None
     assert summary["formation_time_s"] < 3600
+    # ... and the robots stand as their tags say: no neighbours torn apart.
+    assert [c["stretched_links"] for c in summary["components"]] == [0]
     # Every target cell is held by exactly one Stable robot.
     stable = run.controller.states == State.STABLE
     held = {tuple(t) for t in run.controller.tags[stable].tolist()}

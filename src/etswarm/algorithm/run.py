@@ -52,6 +52,7 @@ from etswarm.measures.formation import (
     jaccard,
     placement_error_mm,
     rigid_fit,
+    stretched_links,
 )
 from etswarm.seeding import stream
 from etswarm.shapes import load_shape, scale
@@ -511,6 +512,8 @@ class ETRun:
         holds, stable = self._masks()
         tags = self.controller.tags
         states = self.controller.states
+        pos = self.world.pos
+        d = self.config.et.spacing_mm
         report = []
         for group in self._groups():
             member = np.zeros(self.world.n, dtype=bool)
@@ -527,6 +530,7 @@ class ETRun:
             if g_formed and done is None:
                 done = self.sim_time_s
             free = free_sites(tags, g_holds, target) if len(target) else []
+            g_err = placement_error_mm(pos[group], tags[group], holds[group], d)
             report.append(
                 {
                     "robots": len(group),
@@ -542,6 +546,11 @@ class ETRun:
                     "free_sites": len(free),
                     "free_tags": [list(t) for t in free[:FREE_SITES_SHOWN]],
                     "searching": int(np.count_nonzero(states[group] == State.SEARCH)),
+                    # Where the robots stand, whatever their tags say: RMS off their sites
+                    # after the group's best rigid fit, and the links between holders of
+                    # neighbouring tags that have torn apart (``stretched_links``).
+                    "placement_error_mm": None if g_err is None else round(g_err, 3),
+                    "stretched_links": stretched_links(pos[group], tags[group], holds[group], d),
                 }
             )
         return report

@@ -167,9 +167,21 @@ def describe(summary: dict[str, Any]) -> list[str]:
                 )
             )
     lines.extend(election_lines(summary["events"]))
+    lines.extend(torn_lines(summary["components"]))
     if not summary["settled"]:
         lines.extend(missing_lines(summary["components"]))
     return lines
+
+
+def torn_lines(components: list[dict[str, Any]]) -> list[str]:
+    """A line per group whose robots stand torn apart where their tags are neighbours
+    (``stretched_links``): its tags may say formed while the robots stand in pieces."""
+    return [
+        f"group {k}: {comp['stretched_links']} links between robots of neighbouring sites "
+        f"stretched past 1.5 spacings (placement error {comp['placement_error_mm']} mm)"
+        for k, comp in enumerate(components)
+        if comp.get("stretched_links")
+    ]
 
 
 def election_lines(events: list[dict[str, Any]]) -> list[str]:

@@ -12,7 +12,7 @@ from scipy.sparse import coo_matrix
 from scipy.sparse.csgraph import connected_components
 from scipy.spatial import cKDTree
 
-from etswarm.shapes.lattice import enclosed_cells, tags_to_xy, xy_to_nearest_tag
+from etswarm.shapes.lattice import NEIGHBOUR_OFFSETS, enclosed_cells, tags_to_xy, xy_to_nearest_tag
 
 
 def _tag_set(tags: np.ndarray) -> set[tuple[int, int]]:
@@ -76,6 +76,44 @@ def placement_error_mm(
     if resid is None:
         return None
     return float(np.sqrt(np.mean(np.sum(resid**2, axis=1))))
+
+
+#: Two robots holding neighbouring tags that stand farther apart than this many lattice
+#: spacings have a gap between them where the lattice puts none: the robots' shape is
+#: torn there, whatever their tags say (no 33 mm body could have come between them at
+#: 1.5 d = 60 mm, yet they also do not touch as neighbours should).
+STRETCHED_FACTOR = 1.5
+
+
+def stretched_links(
+    pos: np.ndarray, tags: np.ndarray, holds: np.ndarray, spacing_mm: float,
+    factor: float = STRETCHED_FACTOR,
+) -> int:
+    """How many pairs of robots that hold neighbouring lattice tags stand more than
+    ``factor`` lattice spacings apart. ``pos`` (N, 2) mm, ``tags`` (N, 2) int, ``holds``
+    (N,) bool. A shape can be formed by its tags (DESIGN §5) with its robots in two
+    pieces; this counts the links where that happened (0 on a sound lattice). A tag
+    held twice counts once, by its lowest-index holder."""
+    mask = np.asarray(holds, dtype=bool)
+    held = np.asarray(tags, dtype=np.int64)[mask]
+    where = np.asarray(pos, dtype=np.float64)[mask]
+    if len(held) < 2:
+        return 0
+    held, first = np.unique(held, axis=0, return_index=True)
+    where = where[first]
+    # one int64 key per tag; tags stay far inside +-2**20
+    keys = (held[:, 0] << 21) + held[:, 1]
+    order = np.argsort(keys)
+    keys = keys[order]
+    count = 0
+    for dx, dy in NEIGHBOUR_OFFSETS[:3]:  # each neighbouring pair once
+        want = ((held[:, 0] + dx) << 21) + held[:, 1] + dy
+        at = np.minimum(np.searchsorted(keys, want), len(keys) - 1)
+        found = keys[at] == want
+        other = order[at[found]]
+        gaps = np.linalg.norm(where[found] - where[other], axis=1)
+        count += int(np.count_nonzero(gaps > factor * spacing_mm))
+    return count
 
 
 def rigid_fit(
