@@ -15,6 +15,8 @@ import numpy as np
 import pytest
 
 from etswarm.algorithm.controller import file_held
+from etswarm.algorithm.kinship import foreign
+from etswarm.algorithm.localise import find_site, window_centre
 from etswarm.algorithm.memory import (
     NB_EPOCH,
     NB_ID,
@@ -35,7 +37,7 @@ from etswarm.algorithm.memory import (
 from etswarm.algorithm.messages import EPOCH_SHIFT, MSG_HELD, target_signature
 from etswarm.algorithm.params import ETParams
 from etswarm.algorithm.run import ETRun, RunConfig
-from etswarm.algorithm.search import NO_SITE, find_site, foreign, window_centre
+from etswarm.algorithm.search import NO_SITE
 from etswarm.algorithm.states import State
 from etswarm.errors import EtswarmError
 

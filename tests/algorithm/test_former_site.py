@@ -15,6 +15,7 @@ from etswarm.algorithm.former_site import (
     out_of_reach,
 )
 from etswarm.algorithm.homing import ODO_PER_MM
+from etswarm.algorithm.localise import find_site, window_centre
 from etswarm.algorithm.memory import (
     NB_LAST,
     NO_SITE,
@@ -25,7 +26,6 @@ from etswarm.algorithm.memory import (
     allocate,
 )
 from etswarm.algorithm.params import ETParams
-from etswarm.algorithm.search import find_site, window_centre
 
 from .test_pair_side import WINDOW, pair_world
 from .traced import SESSION_56_SEARCH

@@ -13,6 +13,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
+from etswarm.algorithm.localise import came_from, find_site, window_centre
 from etswarm.algorithm.memory import (
     NB_ID,
     NB_LAST,
@@ -35,12 +36,9 @@ from etswarm.algorithm.search import (
     FROM_MOVING_TICKS,
     NO_SITE,
     begin_search,
-    came_from,
-    find_site,
     follow_reference,
     search_rule,
     track_trend,
-    window_centre,
 )
 from etswarm.algorithm.states import State
 from etswarm.errors import EtswarmError

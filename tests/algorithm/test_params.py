@@ -71,7 +71,7 @@ def test_the_run_command_takes_et_options() -> None:
 
 
 def test_the_pair_window_centre_relaxes_back_to_d() -> None:
-    from etswarm.algorithm.search import window_centre
+    from etswarm.algorithm.localise import window_centre
 
     minutes = 31 * 60
     _ci, fixed = ETParams(pair_aim_mm=-2.0).pack(31, 0, 0)

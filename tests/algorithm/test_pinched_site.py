@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from etswarm.algorithm.localise import find_site, window_centre
 from etswarm.algorithm.memory import (
     NB_ID,
     NB_LAST,
@@ -16,7 +17,7 @@ from etswarm.algorithm.memory import (
     allocate,
 )
 from etswarm.algorithm.params import ETParams
-from etswarm.algorithm.search import NO_SITE, find_site, window_centre
+from etswarm.algorithm.search import NO_SITE
 from etswarm.algorithm.states import State
 
 from .find_site_args import ANYWHERE

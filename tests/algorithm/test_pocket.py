@@ -5,10 +5,11 @@ from __future__ import annotations
 
 import numpy as np
 
+from etswarm.algorithm.localise import find_site, window_centre
 from etswarm.algorithm.memory import NB_ID, NB_LAST, NB_STATE, NB_TS, NB_TX, NB_TY, allocate
 from etswarm.algorithm.params import ETParams
 from etswarm.algorithm.pocket import LOCATED_TOL_MM, located_score, pocket_site
-from etswarm.algorithm.search import NO_SITE, find_site, window_centre
+from etswarm.algorithm.search import NO_SITE
 from etswarm.algorithm.states import State
 
 from .find_site_args import ANYWHERE

@@ -6,9 +6,11 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
+from etswarm.algorithm.hole_rules import closes_a_hole, open_from
+from etswarm.algorithm.localise import in_window
 from etswarm.algorithm.memory import NB_ID, NB_MASK, NB_STATE, NB_TX, NB_TY, allocate
 from etswarm.algorithm.params import C_GENE_X0, C_GENE_Y0, ETParams
-from etswarm.algorithm.search import NO_SITE, closes_a_hole, in_window, open_from
+from etswarm.algorithm.search import NO_SITE
 from etswarm.algorithm.states import State
 from etswarm.errors import EtswarmError
 

@@ -8,6 +8,7 @@ import numpy as np
 import pytest
 
 from etswarm.algorithm.controller import encode
+from etswarm.algorithm.localise import find_site, window_centre
 from etswarm.algorithm.memory import (
     NB_ANCHORED,
     NB_EPOCH,
@@ -28,7 +29,7 @@ from etswarm.algorithm.messages import HOLD_UNIT_TICKS, YIELDING_BIT
 from etswarm.algorithm.params import ETParams
 from etswarm.algorithm.release import queued_rule
 from etswarm.algorithm.run import ETRun, RunConfig
-from etswarm.algorithm.search import NO_SITE, begin_search, find_site, window_centre
+from etswarm.algorithm.search import NO_SITE, begin_search
 from etswarm.algorithm.states import State
 from etswarm.errors import EtswarmError
 

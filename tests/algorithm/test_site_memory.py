@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from etswarm.algorithm.kernel_util import hex_distance
 from etswarm.algorithm.memory import (
     HOLE_FLAG,
     NB_EPOCH,
@@ -17,7 +18,6 @@ from etswarm.algorithm.memory import (
     allocate,
 )
 from etswarm.algorithm.params import ETParams
-from etswarm.algorithm.search import hex_distance
 from etswarm.algorithm.site_memory import remember_heard, shuts_in
 from etswarm.algorithm.states import State
 

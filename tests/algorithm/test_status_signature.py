@@ -17,6 +17,7 @@ import pytest
 
 from etswarm.algorithm.controller import encode, ingest, status_bits
 from etswarm.algorithm.et_controller import ETController
+from etswarm.algorithm.kinship import foreign, sibling
 from etswarm.algorithm.memory import (
     NB_EPOCH,
     NB_ID,
@@ -40,7 +41,6 @@ from etswarm.algorithm.messages import (
 from etswarm.algorithm.params import ETParams
 from etswarm.algorithm.regeneration import TURN_CODE
 from etswarm.algorithm.run import RunConfig
-from etswarm.algorithm.search import foreign, sibling
 from etswarm.algorithm.states import State
 from etswarm.errors import EtswarmError
 

@@ -6,11 +6,11 @@ from __future__ import annotations
 import numpy as np
 
 from etswarm.algorithm.et_controller import ETController
+from etswarm.algorithm.kernel_util import hex_distance
 from etswarm.algorithm.layout import plan_layout
 from etswarm.algorithm.memory import R_NN
 from etswarm.algorithm.params import C_WAVE, ETParams
 from etswarm.algorithm.run import ETRun, RunConfig
-from etswarm.algorithm.search import hex_distance
 from etswarm.algorithm.states import State
 from etswarm.algorithm.wave import HOPS_SHIFT, behind_wave, nn_of, seed_hops
 from etswarm.measures.formation import duplicate_tags, min_pair_distance

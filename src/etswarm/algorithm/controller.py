@@ -278,7 +278,7 @@ def file_held(i, k, tick, ri, in_type, in_data, in_dist, nb, nb_dist, held, slot
     m = table_row(i, get_u16(in_data[i, k], 0), nb)
     if m >= 0 and (np.int64(in_type[i, k]) >> EPOCH_SHIFT) == (ri[i, R_EPOCH] & 31):
         # Sent for robot i's epoch: a placed robot of another target of it belongs to a
-        # sibling remnant, whatever its tag (``search.foreign``).
+        # sibling remnant, whatever its tag (``kinship.foreign``).
         other = np.int64(in_data[i, k, 3]) != signature
         nb[i, m, NB_OTHER] = ri[i, R_EPOCH] + 1 if other else 0
     return reading_of_row(i, m, k, tick, in_dist, nb, nb_dist)

@@ -8,7 +8,7 @@ odometry there (``homing.reset_odometry``), so it knows roughly how far it has g
 
 That settles what distances alone cannot. Two placed robots on adjacent sites, each read
 at d, put a robot on one of their two common neighbour sites; which one, a searcher
-judges from the side it came round the pair on (``search.find_site``). A searcher
+judges from the side it came round the pair on (``localise.find_site``). A searcher
 released right beside the pair came round nothing: traced on `T` `kill random=0.1` seed
 64 (session 55), robots 21 and 27 were left out on the crossbar's lower row, released
 where they stood, and within 100 s took the sites above the row's upper neighbours, 69

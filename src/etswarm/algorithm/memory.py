@@ -121,7 +121,7 @@ R_SILENT_NEXT = 69  # the next of them to send
 R_SILENT_ADDED = 70  # tick it last learnt of a new one
 R_SILENT0 = 71  # the first of SILENT_MAX fields: silent sites' tags (``silent.pack_tag``)
 SILENT_MAX = 8
-# The side of a pair a searcher passes on (``search.find_site``) follows from which of the
+# The side of a pair a searcher passes on (``localise.find_site``) follows from which of the
 # two it came from: the reference it steered by before the current one, kept only if it
 # steered by it while moving for a while (at the midpoint of a pair the nearest robot
 # flickers between the two, so the current reference alone says nothing).
@@ -243,7 +243,7 @@ R_FORMER_Y = R_FORMER_X + 1
 R_ELECT_MIN = R_FORMER_Y + 1
 R_FIELDS = R_ELECT_MIN + 1
 
-#: No site (a tag field that holds none: ``R_FORMER_X``, ``search.find_site``'s left site).
+#: No site (a tag field that holds none: ``R_FORMER_X``, ``localise.find_site``'s left site).
 NO_SITE = -(1 << 40)
 
 PHASE_NORMAL = 0

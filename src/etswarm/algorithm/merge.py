@@ -9,7 +9,7 @@ held, and it could never be filled. Robots carry no mark of their remnant, and s
 remnants share the epoch.
 
 What a placed robot can see is a robot of its own epoch, right beside it, whose tag is no
-site of its own target (``search.off_target``). Once it has heard such a robot within
+site of its own target (``kinship.off_target``). Once it has heard such a robot within
 ``MERGE_NEAR_MM`` for ``MERGE_AFTER_S`` without a break, it starts an election for the next
 epoch. The robots of both remnants hear it (both are at that epoch) and join, so the two
 elect one Leader, count themselves together and regrow one shape. The first formation has
@@ -26,6 +26,7 @@ from __future__ import annotations
 from numba import njit
 
 from etswarm.algorithm.kernel_util import first_growth, is_placed
+from etswarm.algorithm.kinship import off_target
 from etswarm.algorithm.memory import (
     NB_EPOCH,
     NB_ID,
@@ -39,7 +40,6 @@ from etswarm.algorithm.memory import (
 from etswarm.algorithm.params import C_MERGE, C_MERGE_PARKED, C_TICKS_NB_FRESH
 from etswarm.algorithm.parked import parked
 from etswarm.algorithm.regeneration import start_election
-from etswarm.algorithm.search import off_target
 
 #: A robot of another remnant this near (mm, a reading) is in contact: two bodies a lattice
 #: step apart read about 40 mm; across a free site, 80.

@@ -2,11 +2,11 @@
 
 A searcher takes a common neighbour site of two placed robots on the outer side of the
 pair, the side it passes on going round the group clockwise; which side that is depends
-on which of the two it passed first (``search.find_site``). ``follow_reference`` keeps
+on which of the two it passed first (``localise.find_site``). ``follow_reference`` keeps
 the robot it came from, ``R_FROM_ID``: the reference before the present one, if it
 steered by it while moving for 2 s. A robot of the pair that was nearest only for a
 moment never becomes that, so when the searcher came from a robot outside the pair,
-``search.came_from`` guesses that the one it steers by now was passed first.
+``localise.came_from`` guesses that the one it steers by now was passed first.
 
 The guess is wrong where the searcher passes the first robot of the pair at the fringe
 of its window and steers by the second at once. Traced on dumbbell ``split y=mid`` seed

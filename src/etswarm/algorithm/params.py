@@ -683,7 +683,7 @@ class ETParams:
     wave_s: float = 1200.0
     #: Which robot of a pair a searcher passed first, when it came from a robot outside
     #: the pair (it decides the side of the pair the searcher takes a site on): "off",
-    #: the one it steers by now (``search.came_from``); "on", the one of the two it met
+    #: the one it steers by now (``localise.came_from``); "on", the one of the two it met
     #: first as its reference, when it steered by both (``met_order``); "regrowth", so
     #: only after damage (traced on dumbbell ``split y=mid`` seed 77: a searcher that
     #: had steered by the first of the pair for less than 2 s took the mirror site, and

@@ -3,7 +3,7 @@ lattice has stretched too far for the paper's two-reference window.
 
 Placement errors add up as a shape grows, and now and then a free region is left whose
 surrounding robots stand 50-75 mm from its sites instead of d: no two of them are ever
-at d from a searcher, so ``search.find_site`` never fires, though searchers cross the
+at d from a searcher, so ``localise.find_site`` never fires, though searchers cross the
 region again and again. A robot standing inside such a pocket hears every placed robot
 of the site's neighbour sites, each nearer than ``POCKET_REACH_MM``; standing anywhere
 else, it is farther from at least one of them. So a searcher that has been at the shape

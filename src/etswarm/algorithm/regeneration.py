@@ -140,7 +140,7 @@ from etswarm.algorithm.wave import nn_of
 
 #: A robot catching up with a missed election keeps its site only when a placed robot of
 #: the new target on a neighbour site reads nearer than this (mm): d plus the slack of a
-#: stretched lattice (``search.ADJACENT_SLACK_MM``).
+#: stretched lattice (``localise.ADJACENT_SLACK_MM``).
 CATCH_UP_NEAR_MM = 60.0
 #: A target's code (``target_code``) carries its turn in multiples of this: n < 8192, and
 #: the turn (0-5) fits the code's top three bits.

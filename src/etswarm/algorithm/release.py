@@ -25,6 +25,7 @@ from etswarm.algorithm.kernel_util import (
     first_growth,
     is_placed,
 )
+from etswarm.algorithm.kinship import sibling
 from etswarm.algorithm.memory import (
     NB_ANCHORED,
     NB_EPOCH,
@@ -61,7 +62,7 @@ from etswarm.algorithm.params import (
     C_TICKS_RELEASE,
 )
 from etswarm.algorithm.parked import HOPS_PARKED
-from etswarm.algorithm.search import begin_search, sibling
+from etswarm.algorithm.search import begin_search
 
 #: Hop count of a Queued robot that knows no way to the shape (also the largest count).
 HOPS_NONE = 255
