@@ -11,8 +11,9 @@ completed (only those count further); runs in which every remnant of at least
 ``--min-robots`` robots (6, the issue's bar) re-formed its scaled target (success); runs
 in which each such remnant has as many robots as its census counted ("counted": not so
 when a remnant took over a sibling remnant's smaller target, or its census missed
-robots); how many of the smaller remnants of 3 or more robots re-formed; at most one Leader per
-remnant; runs with a tag held twice in a remnant; the median time from damage to
+robots); of the re-formed runs, those with a remnant whose robots stand torn apart ("torn",
+``stretched_links``); how many of the smaller remnants of 3 or more robots re-formed; at
+most one Leader per remnant; runs with a tag held twice in a remnant; the median time from damage to
 re-formed. Then the census over all censuses taken (one per remnant that elected a
 Leader): exact ones, error (count minus the remnant's robots at the census; mean and max
 |error|), mean time from Leader to count and from the election's start to count
@@ -85,9 +86,9 @@ def one_run(
 
 
 HEADER = (
-    "| shape | damage | census | formed | reformed | counted | small remnants reformed | "
-    "<=1 leader | shared tag | median re-formation min | censuses | exact | error mean | "
-    "max abs error | s leader->count | s election->count | ends |\n" + "|---" * 17 + "|"
+    "| shape | damage | census | formed | reformed | counted | torn | small remnants reformed "
+    "| <=1 leader | shared tag | median re-formation min | censuses | exact | error mean | "
+    "max abs error | s leader->count | s election->count | ends |\n" + "|---" * 18 + "|"
 )
 
 
@@ -102,8 +103,9 @@ def report(
     ``first_limit_s`` count, and a remnant re-formed only within ``regrow_limit_s``
     simulated seconds of the damage. "counted": runs in which every such remnant's robots
     at the end are as many as the census that counted them found (a remnant that grew a
-    sibling remnant's smaller target, or that a census counted short, is not)."""
-    formed = reformed = counted = leaders = dups = small = small_formed = 0
+    sibling remnant's smaller target, or that a census counted short, is not). "torn": re-formed
+    runs in which such a remnant's robots stand torn apart somewhere (``stretched_links``)."""
+    formed = reformed = counted = torn = leaders = dups = small = small_formed = 0
     times: list[float] = []
     errors: list[int] = []
     after_leader: list[float] = []
@@ -123,6 +125,7 @@ def report(
         formed += 1
         comps = [c for c in s["components"] if c["robots"] >= min_robots]
         reformed += all(in_time(c) for c in comps)
+        torn += all(in_time(c) for c in comps) and any(c.get("stretched_links") for c in comps)
         counted += all(c["census_count"] == c["robots"] for c in comps)
         smaller = [c for c in s["components"] if 3 <= c["robots"] < min_robots]
         small += len(smaller)
@@ -150,8 +153,8 @@ def report(
     ends = ", ".join(f"{k} {v}" for k, v in sorted(results.items()))
     return (
         f"| {shape} | {damage} | {census} | {formed}/{seeds} | {reformed}/{formed} | "
-        f"{counted}/{formed} | {small_formed}/{small} | {leaders}/{formed} | {dups} | "
-        f"{median} | {len(errors)} | "
+        f"{counted}/{formed} | {torn}/{reformed} | {small_formed}/{small} | "
+        f"{leaders}/{formed} | {dups} | {median} | {len(errors)} | "
         f"{exact_censuses}/{len(errors)} | {mean(errors)} | {max_abs} | {avg(after_leader)} | "
         f"{avg(after_election)} | {ends} |"
     )
