@@ -155,7 +155,7 @@ def two_reference_table(second_ring: str, holder_heard: bool):  # type: ignore[n
 
 
 def test_second_ring_pairs_find_the_site_between_them() -> None:
-    from etswarm.algorithm.search import find_site, second_ring_side, window_centre
+    from etswarm.algorithm.localise import find_site, second_ring_side, window_centre
 
     for q in range(6):
         dx = RING[q][0] + RING[(q + 1) % 6][0]
@@ -175,7 +175,7 @@ def test_second_ring_pairs_find_the_site_between_them() -> None:
 
 
 def test_a_site_whose_reported_neighbour_is_not_heard_is_refused_on_settling() -> None:
-    from etswarm.algorithm.search import find_site, reported_but_unheard, window_centre
+    from etswarm.algorithm.localise import find_site, reported_but_unheard, window_centre
 
     # A reports (1, 1) held, but nobody of (1, 1) is heard: standing on (0, 1) the robot
     # would hear it at about d, so it is somewhere else. Settling (strict), it refuses.
