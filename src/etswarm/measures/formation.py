@@ -78,10 +78,9 @@ def placement_error_mm(
     return float(np.sqrt(np.mean(np.sum(resid**2, axis=1))))
 
 
-#: Two robots holding neighbouring tags that stand farther apart than this many lattice
-#: spacings have a gap between them where the lattice puts none: the robots' shape is
-#: torn there, whatever their tags say (no 33 mm body could have come between them at
-#: 1.5 d = 60 mm, yet they also do not touch as neighbours should).
+#: Robots of neighbouring sites stand about d = 40 mm apart on a sound lattice. Past this
+#: many lattice spacings (60 mm) they are far from touching, though a third 33 mm body
+#: still does not fit between them (66 mm): the shape has torn there, whatever the tags say.
 STRETCHED_FACTOR = 1.5
 
 
