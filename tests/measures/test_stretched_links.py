@@ -64,8 +64,11 @@ def test_the_run_summary_names_torn_groups_only() -> None:
         {"stretched_links": 0, "placement_error_mm": 4.2},
         {"stretched_links": 3, "placement_error_mm": 17.5},
         {"placement_error_mm": None},  # a summary written before the measure existed
+        {"stretched_links": 1, "placement_error_mm": 9.0},
     ]
     assert torn_lines(comps) == [
         "group 1: 3 links between robots of neighbouring sites stretched past 1.5 spacings "
-        "(placement error 17.5 mm)"
+        "(placement error 17.5 mm)",
+        "group 3: 1 link between robots of neighbouring sites stretched past 1.5 spacings "
+        "(placement error 9.0 mm)",
     ]

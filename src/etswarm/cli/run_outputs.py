@@ -177,10 +177,10 @@ def torn_lines(components: list[dict[str, Any]]) -> list[str]:
     """A line per group whose robots stand torn apart where their tags are neighbours
     (``stretched_links``): its tags may say formed while the robots stand in pieces."""
     return [
-        f"group {k}: {comp['stretched_links']} links between robots of neighbouring sites "
+        f"group {k}: {n} link{'' if n == 1 else 's'} between robots of neighbouring sites "
         f"stretched past 1.5 spacings (placement error {comp['placement_error_mm']} mm)"
         for k, comp in enumerate(components)
-        if comp.get("stretched_links")
+        if (n := comp.get("stretched_links"))
     ]
 
 
