@@ -26,9 +26,9 @@ def test_flatten_summary_derives_component_event_and_state_measures() -> None:
         "states": {"Stable": 8, "Queued": 2},
         "components": [
             {"robots": 6, "formed": True, "jaccard": 1.0, "census_count": 5,
-             "time_to_stable_s": 40.0},
+             "time_to_stable_s": 40.0, "stretched_links": 2},
             {"robots": 4, "formed": False, "jaccard": 0.5, "census_count": 6,
-             "time_to_stable_s": 70.0},
+             "time_to_stable_s": 70.0, "stretched_links": 1},
         ],
         "events": [{"t_s": 0, "kind": "damage"}, {"t_s": 3, "kind": "leader"},
                    {"t_s": 4, "kind": "leader"}],
@@ -43,10 +43,14 @@ def test_flatten_summary_derives_component_event_and_state_measures() -> None:
     assert flat["census_error_mean"] == pytest.approx(((5 - 6) + (6 - 4)) / 2)
     assert flat["census_error_max_abs"] == 2
     assert flat["reform_time_s"] == 70.0
+    assert flat["stretched_links"] == 3
     assert flat["n_events"] == 3 and flat["events.leader"] == 2 and flat["events.damage"] == 1
     assert flat["n_tags"] == 3
     summary["components"][1]["time_to_stable_s"] = None
     assert flatten_summary(summary)["reform_time_s"] is None
+    for comp in summary["components"]:
+        del comp["stretched_links"]  # as in summaries older than the measure
+    assert flatten_summary(summary)["stretched_links"] is None
 
 
 def test_execute_run_records_summary_and_crash() -> None:

@@ -11,7 +11,8 @@ Nested summaries are flattened:
   ``components_formed``, ``component_jaccard_min``/``_mean``, ``census_error_mean``
   (census count minus the remnant's robots, averaged), ``census_error_max_abs`` and
   ``reform_time_s`` (the slowest remnant's ``time_to_stable_s``; empty when one never
-  stabilised);
+  stabilised) and ``stretched_links`` (summed over the remnants; empty for summaries
+  older than the measure);
 - ``events`` (a list of ``{t_s, kind, ...}``) becomes ``n_events`` and ``events.<kind>``
   counts; any other list becomes ``n_<key>``.
 
@@ -89,6 +90,7 @@ def _component_measures(components: list[Any]) -> dict[str, Any]:
         if _number(c.get("census_count")) is not None and _number(c.get("robots")) is not None
     ]
     stable_times = [_number(c.get("time_to_stable_s")) for c in comps]
+    links = [n for c in comps if (n := _number(c.get("stretched_links"))) is not None]
     out: dict[str, Any] = {
         "n_components": len(comps),
         "components_formed": sum(1 for c in comps if c.get("formed") is True),
@@ -103,6 +105,7 @@ def _component_measures(components: list[Any]) -> dict[str, Any]:
             if stable_times and all(t is not None for t in stable_times)
             else None
         ),
+        "stretched_links": int(sum(links)) if links else None,
     }
     return out
 
