@@ -13,6 +13,8 @@ docs/algorithm.md).
 
 from __future__ import annotations
 
+from collections.abc import Callable
+
 import click
 import numpy as np
 from swarm_picture import et_params
@@ -51,14 +53,25 @@ def run_end(shape: str, seed: int, max_time_s: float, et: ETParams) -> dict[str,
             "in_hole": inside}
 
 
+def run_options(command: Callable[..., None]) -> Callable[..., None]:
+    """The arguments of the scripts that run a shape with a hole over seeds (this one and
+    ``hole_seal.py``): SHAPE, ``--seeds``, ``--first-seed``, ``--max-time`` and ``--et``."""
+    for decorate in reversed((
+        click.argument("shape", default="O"),
+        click.option("--seeds", default=20, show_default=True, type=click.IntRange(min=1)),
+        click.option("--first-seed", default=0, show_default=True,
+                     type=click.IntRange(min=0)),
+        click.option("--max-time", "max_time_s", default=14400.0, show_default=True,
+                     type=click.FloatRange(min=1.0), help="simulated s"),
+        click.option("--et", "et", multiple=True, metavar="NAME=VALUE", callback=et_params,
+                     help="an ETParams field (repeatable)"),
+    )):
+        command = decorate(command)
+    return command
+
+
 @click.command()
-@click.argument("shape", default="O")
-@click.option("--seeds", default=20, show_default=True, type=click.IntRange(min=1))
-@click.option("--first-seed", default=0, show_default=True, type=click.IntRange(min=0))
-@click.option("--max-time", "max_time_s", default=14400.0, show_default=True,
-              type=click.FloatRange(min=1.0), help="simulated s")
-@click.option("--et", "et", multiple=True, metavar="NAME=VALUE", callback=et_params,
-              help="an ETParams field (repeatable)")
+@run_options
 def main(shape: str, seeds: int, first_seed: int, max_time_s: float, et: ETParams) -> None:
     """Print how each unformed run of SHAPE ends."""
     ends = []

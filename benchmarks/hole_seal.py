@@ -19,7 +19,7 @@ from __future__ import annotations
 
 import click
 import numpy as np
-from swarm_picture import et_params
+from hole_ends import on_hole_edge, run_options
 
 from etswarm.algorithm.memory import R_WATCH_ID0, R_WATCH_ID1, R_WATCH_T0, R_WATCH_T1
 from etswarm.algorithm.params import ETParams
@@ -27,16 +27,13 @@ from etswarm.algorithm.run import ETRun, RunConfig
 from etswarm.algorithm.states import State
 from etswarm.errors import EtswarmError
 from etswarm.measures.formation import in_holes
-from etswarm.shapes.lattice import NEIGHBOUR_OFFSETS, enclosed_cells
+from etswarm.shapes.lattice import enclosed_cells
 
 
 def hole_edge(target: np.ndarray) -> set[tuple[int, int]]:
     """The sites of ``target`` ((P, 2) tags) next to one of its holes."""
     holes = {tuple(t) for t in enclosed_cells(target).tolist()}
-    return {
-        (x, y) for x, y in target.tolist()
-        if any((x + int(dx), y + int(dy)) in holes for dx, dy in NEIGHBOUR_OFFSETS)
-    }
+    return {(x, y) for x, y in on_hole_edge(target.tolist(), holes)}
 
 
 def sealing(run: ETRun, every_ticks: int, max_ticks: int) -> dict[str, object] | None:
@@ -77,17 +74,11 @@ def sealing(run: ETRun, every_ticks: int, max_ticks: int) -> dict[str, object] |
 
 
 @click.command()
-@click.argument("shape", default="O")
-@click.option("--seeds", default=20, show_default=True, type=click.IntRange(min=1))
-@click.option("--first-seed", default=0, show_default=True, type=click.IntRange(min=0))
-@click.option("--max-time", "max_time_s", default=14400.0, show_default=True,
-              type=click.FloatRange(min=1.0), help="simulated s")
+@run_options
 @click.option("--every", "every_s", default=10.0, show_default=True,
               type=click.FloatRange(min=0.1), help="simulated s between checks")
-@click.option("--et", "et", multiple=True, metavar="NAME=VALUE", callback=et_params,
-              help="an ETParams field (repeatable)")
-def main(shape: str, seeds: int, first_seed: int, max_time_s: float, every_s: float,
-         et: ETParams) -> None:
+def main(shape: str, seeds: int, first_seed: int, max_time_s: float, et: ETParams,
+         every_s: float) -> None:
     """Print how each run of SHAPE closed its holes."""
     shut_in = 0
     for seed in range(first_seed, first_seed + seeds):
