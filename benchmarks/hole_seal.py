@@ -6,10 +6,9 @@ checking every ``--every`` simulated seconds which sites of the holes' edges are
 When the last of them is taken, it prints the time, the robot that took it, the sightings
 of searchers in the hole that robot knew at the check before (``hole_watch``: searcher ID
 and age in seconds then; a sighting younger than ``hole_watch_s`` would have kept it from
-walling the hole off) and
-the searchers standing in the hole at that check (``measures.formation.in_holes``). A
-hole closed with searchers inside shuts them in for good. Used for ``O`` seed 200 in
-session 64 (``docs/algorithm.md``).
+walling the hole off) and the searchers standing in the hole at that check
+(``measures.formation.in_holes``). A hole closed with searchers inside shuts them in for
+good. Used for ``O`` seed 200 in session 64 (``docs/algorithm.md``).
 
     .venv/bin/python benchmarks/hole_seal.py O --seeds 20 --first-seed 200 \\
         [--et hole_watch_s=0] [--every 10]
