@@ -169,6 +169,8 @@ def test_the_ring_of_o_stays_open_while_its_edge_sees_a_searcher_in_the_hole() -
         plain.world.pos[stable], plain.world.pos, plain.controller.tags, stable,
         plain.target, plain.config.et.spacing_mm,
     ).any()
+    # the summary says so: every searcher of the group is shut in the hole
+    assert summary["components"][0]["shut_in_holes"] == searching.sum() > 0
     run = run_formation("O", 0, max_time_s=10800, sim_params=NATIVE_MATHS,
                         et=ETParams(**SESSION_57_SEARCH))
     summary = run.summary()

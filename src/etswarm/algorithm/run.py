@@ -52,6 +52,7 @@ from etswarm.measures.formation import (
     jaccard,
     placement_error_mm,
     rigid_fit,
+    shut_in_holes,
     stretched_links,
 )
 from etswarm.seeding import stream
@@ -546,6 +547,12 @@ class ETRun:
                     "free_sites": len(free),
                     "free_tags": [list(t) for t in free[:FREE_SITES_SHOWN]],
                     "searching": int(np.count_nonzero(states[group] == State.SEARCH)),
+                    # ... and of those, the ones standing in a hole of the target (an
+                    # ``O``'s middle), which a closed ring shuts in for good
+                    "shut_in_holes": shut_in_holes(
+                        pos[group], tags[group], holds[group],
+                        states[group] == State.SEARCH, target, d,
+                    ) if len(target) else 0,
                     # Where the robots stand, whatever their tags say: RMS off their sites
                     # after the group's best rigid fit, and the links between holders of
                     # neighbouring tags that have torn apart (``stretched_links``).

@@ -214,6 +214,8 @@ def missing_lines(components: list[dict[str, Any]]) -> list[str]:
             f"group {k}: {comp['free_sites']} target sites free: {shown}"
             + (f" and {more} more" if more > 0 else "")
             + f"; {comp['searching']} robots searching"
+            + (f", {inside} of them in the shape's hole" if (inside := comp.get("shut_in_holes"))
+               else "")
         )
     if lone:
         lines.append(f"{lone} robot(s) out of range of every other robot")

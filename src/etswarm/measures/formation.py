@@ -151,6 +151,22 @@ def in_holes(
     return np.array([tuple(t) in holes for t in sites.tolist()], dtype=bool)
 
 
+def shut_in_holes(
+    pos: np.ndarray, tags: np.ndarray, holds: np.ndarray, searching: np.ndarray,
+    target: np.ndarray, spacing_mm: float,
+) -> int:
+    """How many ``searching`` robots (N,) bool stand in a hole of the ``target`` cells
+    (P, 2), by :func:`in_holes` on the lattice the holders (``holds`` (N,) bool; ``pos``
+    (N, 2) mm, ``tags`` (N, 2)) fit. A hole whose edge is held all round shuts them in:
+    the sites they would take stay free. 0 for a target without holes, or with fewer than
+    two holders to fit."""
+    searching = np.asarray(searching, dtype=bool)
+    if not searching.any() or np.count_nonzero(holds) < 2 or not len(enclosed_cells(target)):
+        return 0
+    pos = np.asarray(pos, dtype=np.float64)
+    return int(np.count_nonzero(in_holes(pos[searching], pos, tags, holds, target, spacing_mm)))
+
+
 def components(pos: np.ndarray, members: np.ndarray, radius_mm: float) -> list[np.ndarray]:
     """Connected groups of ``members`` robots (links between centres <= radius_mm).
 
