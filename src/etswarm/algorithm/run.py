@@ -552,7 +552,7 @@ class ETRun:
                     "shut_in_holes": shut_in_holes(
                         pos[group], tags[group], holds[group],
                         states[group] == State.SEARCH, target, d,
-                    ) if len(target) else 0,
+                    ),
                     # Where the robots stand, whatever their tags say: RMS off their sites
                     # after the group's best rigid fit, and the links between holders of
                     # neighbouring tags that have torn apart (``stretched_links``).
