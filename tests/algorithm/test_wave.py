@@ -8,15 +8,15 @@ import numpy as np
 from etswarm.algorithm.et_controller import ETController
 from etswarm.algorithm.kernel_util import hex_distance
 from etswarm.algorithm.layout import plan_layout
-from etswarm.algorithm.memory import R_NN
-from etswarm.algorithm.params import C_WAVE, ETParams
+from etswarm.algorithm.memory import HOLE_FLAG, R_NN
+from etswarm.algorithm.params import C_RIM_WAVE, C_WAVE, ETParams
 from etswarm.algorithm.run import ETRun, RunConfig
 from etswarm.algorithm.states import State
-from etswarm.algorithm.wave import HOPS_SHIFT, behind_wave, nn_of, seed_hops
+from etswarm.algorithm.wave import HOPS_SHIFT, behind_wave, nn_of, rim_hops, seed_hops
 from etswarm.measures.formation import duplicate_tags, min_pair_distance
 from etswarm.shapes.lattice import neighbour_counts
 
-from .test_site_memory import ORIGIN, hexagon_gene, memory_of, ring
+from .test_site_memory import ORIGIN, SIZE, hexagon_gene, memory_of, ring
 from .traced import NATIVE_MATHS, SESSION_47_FORMATION
 
 SEEDS = np.array([[0, 0], [1, 0], [0, 1]])
@@ -109,10 +109,100 @@ def test_a_disc_whose_rim_closed_round_free_sites_forms_with_the_wave() -> None:
     assert min_pair_distance(with_wave.world.pos, with_wave.world.present) > 2 * 16.5 - 1.0
 
 
-def test_the_wave_is_on_by_default_but_not_for_thin_or_holed_shapes() -> None:
-    on = {shape: ETRun(RunConfig(shape=shape)).controller.ci[C_WAVE] > 0
-          for shape in ("disc", "starfish", "dumbbell", "plus", "T", "H", "triangle", "O")}
+def test_the_wave_is_on_by_default_but_not_for_thin_shapes_and_from_the_rim_for_holed_ones(
+) -> None:
+    controllers = {shape: ETRun(RunConfig(shape=shape)).controller
+                   for shape in ("disc", "starfish", "dumbbell", "plus", "T", "H", "triangle", "O")}
+    on = {shape: ctl.ci[C_WAVE] > 0 for shape, ctl in controllers.items()}
     assert on == {"disc": True, "starfish": True, "dumbbell": True, "plus": True,
-                  "T": False, "H": False, "triangle": False, "O": False}
+                  "T": False, "H": False, "triangle": False, "O": True}
+    rim = {shape for shape, ctl in controllers.items() if ctl.ci[C_RIM_WAVE] > 0}
+    assert rim == {"O"}
     no_wave = ETRun(RunConfig(shape="disc", et=ETParams(wave_s=0.0)))
     assert no_wave.controller.ci[C_WAVE] == 0
+
+
+def ring_of_three_rows() -> np.ndarray:
+    """(P, 2) tags one to three steps from (0, 0): a ring three rows thick round a hole of
+    one site."""
+    return np.array([s for r in (1, 2, 3) for s in ring(r)])
+
+
+def test_rim_hops_count_steps_from_the_edge_of_the_hole() -> None:
+    cells = ring_of_three_rows()
+    hops = rim_hops(cells)
+    assert hops.tolist() == [hex_distance(x, y) - 1 for x, y in cells.tolist()]
+    # The edge of the hole is where the count starts, whatever the shape around it:
+    # the library's O has rows of three and of two, and every cell counts 0 to 2.
+    o_cells = ETRun(RunConfig(shape="O")).target
+    assert sorted(set(rim_hops(o_cells).tolist())) == [0, 1, 2]
+
+
+def ring_gene_with_rim_hops() -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """``ring_of_three_rows`` as a gene (its hole flagged), NN and rim hops packed as
+    ``ETController.seed`` packs them, and constants with the rim wave on."""
+    cells = ring_of_three_rows()
+    gene = np.zeros((SIZE, SIZE), dtype=np.uint8)
+    gene[cells[:, 0] - ORIGIN, cells[:, 1] - ORIGIN] = 1
+    gene[-ORIGIN, -ORIGIN] = HOLE_FLAG
+    packed = np.zeros(gene.shape, dtype=np.int16)
+    packed[cells[:, 0] - ORIGIN, cells[:, 1] - ORIGIN] = neighbour_counts(cells) + (
+        rim_hops(cells) << HOPS_SHIFT
+    )
+    ci, _ = ETParams(rim_wave_s=1200.0).pack(31, gene_x0=ORIGIN, gene_y0=ORIGIN)
+    return gene, packed, ci
+
+
+def test_a_ring_site_waits_only_for_a_nearer_site_that_could_be_located() -> None:
+    gene, packed, ci = ring_gene_with_rim_hops()
+    assert ci[C_RIM_WAVE] == 1200 * 31
+    # (2, 0), in the middle row, has one neighbour on the hole's edge: (1, 0). Held (1, 1)
+    # and (2, 1) locate (1, 0): a searcher should take it first.
+    locating = [(1, 1), (2, 1)]
+    assert behind_wave(2, 0, gene, packed, ci, memory_of(locating), ORIGIN, ORIGIN)
+    assert not behind_wave(2, 0, gene, packed, ci, memory_of([*locating, (1, 0)]),
+                           ORIGIN, ORIGIN)
+    # With (1, 1) alone, (1, 0) cannot be located until a site beside it is held, which
+    # may be (2, 0) itself: the rim wave lets (2, 0) go, the wave from the seeds would not.
+    alone = memory_of([(1, 1)])
+    assert not behind_wave(2, 0, gene, packed, ci, alone, ORIGIN, ORIGIN)
+    plain = ci.copy()
+    plain[C_RIM_WAVE] = 0
+    assert behind_wave(2, 0, gene, packed, plain, alone, ORIGIN, ORIGIN)
+    # A site on the hole's edge waits for nothing.
+    assert not behind_wave(1, 0, gene, packed, ci, memory_of([]), ORIGIN, ORIGIN)
+
+
+def test_the_rim_wave_runs_only_for_targets_with_a_hole() -> None:
+    et = ETParams(rim_wave_s=600.0)
+    ring_run = ETRun(RunConfig(shape="O", et=et)).controller
+    assert ring_run.ci[C_WAVE] == ring_run.ci[C_RIM_WAVE] == 600 * ring_run.ticks_per_s
+    cells = ring_run.slot_cells[0]
+    packed = ring_run.gene_nn[0, cells[:, 0] - ring_run.x0, cells[:, 1] - ring_run.y0]
+    assert np.array_equal(packed >> HOPS_SHIFT, rim_hops(cells))
+    assert np.array_equal(nn_of(packed), neighbour_counts(cells))
+    disc = ETRun(RunConfig(shape="disc", et=et)).controller
+    assert disc.ci[C_RIM_WAVE] == 0 and disc.ci[C_WAVE] == 1200 * disc.ticks_per_s
+    off = ETRun(RunConfig(shape="O", et=ETParams(rim_wave_s=0.0))).controller
+    assert off.ci[C_WAVE] == off.ci[C_RIM_WAVE] == 0
+
+
+def test_o_closes_its_ring_from_the_hole_out_where_a_way_across_it_stalled() -> None:
+    # O seed 9 without the rim wave ends 4 h on a way of three free sites across the ring,
+    # (2, 3), (3, 4) and (4, 5): each capture would shut a free site off from the searchers.
+    # With it the ring's inner rows lead, its last free sites open to the outside, and it
+    # forms (session 65).
+    def run(rim_wave_s: float) -> ETRun:
+        r = ETRun(RunConfig(shape="O", seed=9, max_time_s=14400,
+                            et=ETParams(rim_wave_s=rim_wave_s)))
+        r.run()
+        return r
+
+    stalled = run(0.0).summary()
+    assert not stalled["formed"]
+    assert sorted(stalled["components"][0]["free_tags"]) == [[2, 3], [3, 4], [4, 5]]
+    with_rim = run(1200.0)
+    summary = with_rim.summary()
+    assert summary["formed"], summary["components"]
+    assert summary["jaccard"] == 1.0 and summary["duplicate_tags"] == []
+    assert min_pair_distance(with_rim.world.pos, with_rim.world.present) > 2 * 16.5 - 1.0

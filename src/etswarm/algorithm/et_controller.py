@@ -46,13 +46,14 @@ from etswarm.algorithm.messages import status_nibble
 from etswarm.algorithm.params import (
     C_FIRST_PLUNGE,
     C_HOLE_WATCH,
+    C_RIM_WAVE,
     C_WAVE,
     F_PORTABLE_MATH,
     NOMINAL_MOTION,
     ETParams,
 )
 from etswarm.algorithm.states import PLACED_STATES, State
-from etswarm.algorithm.wave import HOPS_SHIFT, nn_of, seed_hops
+from etswarm.algorithm.wave import HOPS_SHIFT, nn_of, rim_hops, seed_hops
 from etswarm.shapes.lattice import depths, enclosed_cells, neighbour_counts, sort_cells
 
 #: Target slots allocated at first (more are added when regenerations need them).
@@ -211,13 +212,19 @@ class ETController:
         self.idle[:] = 0
         cells = self.slot_cells[0]
         if len(enclosed_cells(cells)):
-            # A ring's two fronts meet wherever they meet; waiting for the nearer sites
-            # formed O less often (103 of 200 runs against 118): the hole watch rules there.
-            # Plunging into a ring's inner rim formed O 26 of 60 times against 31.
-            self.ci[C_WAVE] = 0
+            # A ring's two fronts meet wherever they meet; waiting for the sites nearer
+            # the seeds formed O less often (103 of 200 runs against 118): the hole watch
+            # rules there. Plunging into a ring's inner rim formed O 26 of 60 times
+            # against 31. The rim wave (``rim_wave_s``) grows the ring from its hole out.
+            self.ci[C_WAVE] = self.ci[C_RIM_WAVE]
             self.ci[C_FIRST_PLUNGE] = 0
+        else:
+            self.ci[C_RIM_WAVE] = 0
         if self.ci[C_WAVE] > 0:
-            hops = seed_hops(cells, np.asarray(layout.seed_tags))
+            hops = (
+                rim_hops(cells) if self.ci[C_RIM_WAVE] > 0
+                else seed_hops(cells, np.asarray(layout.seed_tags))
+            )
             self.gene_nn[0, cells[:, 0] - self.x0, cells[:, 1] - self.y0] += (
                 hops << HOPS_SHIFT
             ).astype(np.int16)

@@ -79,7 +79,8 @@ C_LONE_KEPT = 62  # 1: a kept robot with no kept neighbour site in the new targe
 C_CAME_ORDER = 63  # which of a pair a searcher passed first, by the order it met them (mode)
 C_SIBLING_TARGET = 64  # which announcements of its epoch an electing robot ignores (mode)
 C_STATUS_SIG = 65  # a status carries its target's signature (4 bits, ``messages``): mode
-N_CI = 66
+C_RIM_WAVE = 66  # ticks at the shape a searcher keeps to the rim wave round a hole (0: off)
+N_CI = 67
 
 #: Values of ``ci[C_RIGHT_OF_WAY]``: never, always, or in the first formation alone (a
 #: thin shape's, ``thin_right_of_way``).
@@ -198,7 +199,7 @@ NON_NEGATIVE: frozenset[str] = frozenset(
         "capture_pinch_refusals", "regrowth_pinch_refusals", "two_neighbour_widen_s",
         "regrowth_two_neighbour_widen_s", "capture_mouth_mm", "capture_offset_mm",
         "regrowth_capture_offset_mm", "remembered_neighbours_s", "regrowth_unpinch_mm",
-        "isolated_rejoin_s", "hole_watch_s", "wave_s", "regrowth_plunge_s",
+        "isolated_rejoin_s", "hole_watch_s", "wave_s", "rim_wave_s", "regrowth_plunge_s",
         "first_plunge_after_s", "lost_escape_s", "offset_leave_mm", "former_site_slack_mm",
         "from_return_s", "mirror_margin_mm",
     }
@@ -681,6 +682,14 @@ class ETParams:
     #: min against 43 with it). 0: off, the paper's first site found. 1200 formed disc
     #: 119 of 120 runs against 113 (``docs/algorithm.md``, sessions 44 and 45).
     wave_s: float = 1200.0
+    #: For a target with holes, the wave runs out from the holes' edges instead of from
+    #: the seeds (``wave.rim_hops``): in the first formation a searcher does not take a
+    #: site while a neighbour site nearer a hole could be located and is not known held,
+    #: for its first this many seconds at the shape. A ring's rows then close round the
+    #: hole first, and its last free sites are a notch open to the outside rather than a
+    #: way across the ring that no capture may close. 0: off. 1200 formed `O` 158 of 220
+    #: runs against 135 (``docs/algorithm.md``, session 65).
+    rim_wave_s: float = 1200.0
     #: Which robot of a pair a searcher passed first, when it came from a robot outside
     #: the pair (it decides the side of the pair the searcher takes a site on): "off",
     #: the one it steers by now (``localise.came_from``); "on", the one of the two it met
@@ -851,6 +860,7 @@ class ETParams:
         ci[C_TICKS_PER_S] = ticks_per_s
         # A thin shape closes no ring round a free middle: the wave only slows it.
         ci[C_WAVE] = ticks(self.wave_s) if self.wave_s > 0 and not thin else 0
+        ci[C_RIM_WAVE] = ticks(self.rim_wave_s) if self.rim_wave_s > 0 else 0
         ci[C_TICKS_PLUNGE] = ticks(self.regrowth_plunge_s) if self.regrowth_plunge_s > 0 else 0
         ci[C_TICKS_LOST_ESCAPE] = ticks(self.lost_escape_s) if self.lost_escape_s > 0 else 0
         first_plunge = self.first_plunge_after_s

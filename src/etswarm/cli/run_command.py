@@ -61,8 +61,9 @@ from etswarm.algorithm.layout import LAYOUTS
               help="In the first formation a searcher does not take a site while a site "
                    "beside it nearer the seeds is not known held, for its first 20 minutes "
                    "at the shape, so compact shapes grow outwards from the seeds; off for thin "
-                   "shapes and shapes with holes (--no-wave: the paper's first site found; --et "
-                   "wave_s=S sets the seconds).")
+                   "shapes; in shapes with holes the wave runs out from the holes' edges "
+                   "(--no-wave: the paper's first site found; --et wave_s=S and --et "
+                   "rim_wave_s=S set the seconds).")
 @click.option("--et", "et_options", multiple=True, metavar="NAME=VALUE",
               help="Set any ETParams field, e.g. --et pair_aim_mm=-1 (repeatable; see "
                    "docs/algorithm.md). Applied after the options above.")
@@ -136,7 +137,7 @@ def run(shape: str, robots: int | None, seed: int, loss: float, noise: float, ma
                   silent_sites="on" if silent_sites else "off",
                   queue_stride="on" if queue_stride else "off")
     if not wave:
-        et = replace(et, wave_s=0.0)
+        et = replace(et, wave_s=0.0, rim_wave_s=0.0)
     if release_interval is not None:
         et = replace(et, release_interval_s=release_interval)
     et = replace(et, **dict(parse_et_option(text) for text in et_options))
