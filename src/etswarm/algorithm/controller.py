@@ -58,6 +58,7 @@ from etswarm.algorithm.memory import (
     R_EPOCH,
     R_HOLD_UNTIL,
     R_HOP,
+    R_INSIDE,
     R_LEADER,
     R_LOST_SINCE,
     R_MASK,
@@ -95,6 +96,7 @@ from etswarm.algorithm.messages import (
     ANCHORED_BIT,
     EPOCH_SHIFT,
     HOLD_UNIT_TICKS,
+    INSIDE_BIT,
     KIND_MASK,
     MSG_ELECT,
     MSG_EXTENT,
@@ -482,7 +484,10 @@ def encode(i, tick, ri, bits, out_on, out_type, out_data):  # type: ignore[no-un
         out_data[i, 5] = min(ri[i, R_SHAPE_HOPS], 255)
         if state == SEARCH:
             anchored = ANCHORED_BIT if ri[i, R_LOST_SINCE] == 0 else 0
-            out_data[i, 6] = anchored | (YIELDING_BIT if ri[i, R_YIELD_SINCE] >= 0 else 0)
+            inside = INSIDE_BIT if ri[i, R_INSIDE] == 1 else 0
+            out_data[i, 6] = (
+                anchored | (YIELDING_BIT if ri[i, R_YIELD_SINCE] >= 0 else 0) | inside
+            )
         else:
             left = (ri[i, R_HOLD_UNTIL] - tick + HOLD_UNIT_TICKS - 1) // HOLD_UNIT_TICKS
             out_data[i, 6] = min(max(left, 0), 255)

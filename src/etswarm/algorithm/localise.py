@@ -12,6 +12,7 @@ from etswarm.algorithm.hole_rules import (
     encloses_a_site,
     open_from,
 )
+from etswarm.algorithm.hole_watch import taker_allows
 from etswarm.algorithm.kernel_util import (
     ACTIVE,
     DIR_X,
@@ -336,7 +337,11 @@ def find_site(  # type: ignore[no-untyped-def]
                         dist_a, dist_b, pair_aim, cf, plain_scale
                     )
                 if ok and ruled_out_mirror and min_ts >= 0 and err < best_err:
-                    if hole_memory and shuts_in(cx, cy, held_i, ox, oy, gene_flag, ci):
+                    if (
+                        hole_memory
+                        and shuts_in(cx, cy, held_i, ox, oy, gene_flag, ci)
+                        and not taker_allows(i, tick, cx, cy, ri, held_i, ox, oy, gene_flag, ci)
+                    ):
                         continue
                     # the playout is costly: only when a settled robot confirms its site
                     if (

@@ -241,7 +241,9 @@ R_FORMER_Y = R_FORMER_X + 1
 #: back when entries age; this does not): an announcement of the epoch it elects for by
 #: any other Leader is a sibling remnant's (``regeneration.from_sibling``).
 R_ELECT_MIN = R_FORMER_Y + 1
-R_FIELDS = R_ELECT_MIN + 1
+#: 1 while a searcher's readings place it in a hole of its target (``hole_watch``).
+R_INSIDE = R_ELECT_MIN + 1
+R_FIELDS = R_INSIDE + 1
 
 #: No site (a tag field that holds none: ``R_FORMER_X``, ``localise.find_site``'s left site).
 NO_SITE = -(1 << 40)

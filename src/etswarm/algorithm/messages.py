@@ -94,6 +94,8 @@ CHUNK_FIRST_BYTE = 4
 #: Byte 6 of a searcher's status: it hears a stationary robot; it yields to a searcher.
 ANCHORED_BIT = 1
 YIELDING_BIT = 2
+#: ... its readings place it in a hole of the shape (``hole_watch.localises_in_hole``).
+INSIDE_BIT = 4
 #: Byte 6 of a Queued robot's status counts its release hold in units of this many ticks.
 HOLD_UNIT_TICKS = 32
 

@@ -80,7 +80,9 @@ C_CAME_ORDER = 63  # which of a pair a searcher passed first, by the order it me
 C_SIBLING_TARGET = 64  # which announcements of its epoch an electing robot ignores (mode)
 C_STATUS_SIG = 65  # a status carries its target's signature (4 bits, ``messages``): mode
 C_RIM_WAVE = 66  # ticks at the shape a searcher keeps to the rim wave round a hole (0: off)
-N_CI = 67
+C_INSIDE_BIT = 67  # 1: a searcher that places itself in a hole says so in its status
+C_HOLE_TAKER = 68  # 1: a hole's last free edge site may be walled in with one searcher inside
+N_CI = 69
 
 #: Values of ``ci[C_RIGHT_OF_WAY]``: never, always, or in the first formation alone (a
 #: thin shape's, ``thin_right_of_way``).
@@ -674,6 +676,19 @@ class ETParams:
     #: hole off while it knows another searcher was seen inside within this many seconds
     #: (``hole_watch``). 0: no watch (a ring may close with searchers shut in).
     hole_watch_s: float = 60.0
+    #: With the watch: a searcher whose readings of three or more placed robots fit a hole
+    #: site best says so in its status (``hole_watch.INSIDE_BIT``), and every robot on the
+    #: hole's edge that hears it notes a sighting, also those beside a free site of the
+    #: ring, which cannot tell the two sides apart by distance alone. "off": only the
+    #: distance test.
+    inside_bit: str = "on"
+    #: With the watch: a capture that would leave one free site of a hole's edge
+    #: reachable only through the hole (two free sites across a ring, the ring's last
+    #: way, taken from its middle) is not refused when the searcher knows exactly one
+    #: other searcher seen in the hole lately: that one can take the site
+    #: (``hole_watch.taker_allows``). "off": refused, as any capture that cuts a free site
+    #: off from the outside.
+    hole_taker: str = "on"
     #: In the first formation a searcher does not take a site while a neighbour site of
     #: the target nearer the seed triangle (in steps within the shape) is not known held,
     #: for its first this many seconds at the shape (``wave``): a compact shape then
@@ -737,6 +752,7 @@ class ETParams:
                 "silent_sites", "lost_beacon", "lost_yield", "right_of_way", "thin_right_of_way",
                 "site_offsets", "report_patience", "merge_remnants", "signed_foreign",
                 "mouth_plunge", "merge_parked", "parked_obstacle", "lone_kept_leave",
+                "inside_bit", "hole_taker",
             ):
                 if value not in ("on", "off"):
                     raise EtswarmError(f"{f.name} must be 'on' or 'off', got {value!r}")
@@ -857,6 +873,8 @@ class ETParams:
         holes_known = self.hole_flag == "on" and self.hole_memory == "on"
         watching = self.hole_watch_s > 0 and holes_known
         ci[C_HOLE_WATCH] = ticks(self.hole_watch_s) if watching else 0
+        ci[C_INSIDE_BIT] = 1 if watching and self.inside_bit == "on" else 0
+        ci[C_HOLE_TAKER] = 1 if watching and self.hole_taker == "on" else 0
         ci[C_TICKS_PER_S] = ticks_per_s
         # A thin shape closes no ring round a free middle: the wave only slows it.
         ci[C_WAVE] = ticks(self.wave_s) if self.wave_s > 0 and not thin else 0

@@ -6,7 +6,7 @@ from __future__ import annotations
 from numba import njit
 
 from etswarm.algorithm.former_site import former_reach, note_former_site
-from etswarm.algorithm.hole_watch import watch_blocks
+from etswarm.algorithm.hole_watch import note_inside, watch_blocks
 from etswarm.algorithm.homing import (
     homing_motion,
     integrate,
@@ -372,6 +372,7 @@ def search_rule(  # type: ignore[no-untyped-def]
     left_y = ri[i, R_LEFT_Y] if ri[i, R_LEFT] == 1 else NO_SITE
     moving = motor[i] != STOP  # its command since the last tick
     integrate(i, ri, motor[i], cf)
+    note_inside(i, tick, ri, nb, nb_dist, gene_flag, ci, cf)
     reach = former_reach(i, ri, cf)
     d = cf[F_SPACING]
     steer_fresh = ci[C_TICKS_MOVE_FRESH]

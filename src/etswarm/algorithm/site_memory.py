@@ -213,9 +213,10 @@ def remember_heard(i, tick, ri, nb, held, ox, oy):  # type: ignore[no-untyped-de
 @njit
 def flood_from(sx, sy, held_i, ox, oy, gene_flag, ci):  # type: ignore[no-untyped-def]
     """Breadth-first from site (sx, sy) over the sites not remembered held that are on the
-    shape or in one of its holes (``HOLE_FLAG``): (exits, free_site). ``exits``: the flood
+    shape or in one of its holes (``HOLE_FLAG``): (exits, free_sites). ``exits``: the flood
     reaches the outside of the shape (where searching robots come from) or the window's
-    edge (assumed open); ``free_site``: it crossed a free shape site ((sx, sy) included).
+    edge (assumed open); ``free_sites``: the free shape sites it crossed ((sx, sy)
+    included; all of its region's when it does not exit, else those up to the exit).
     Unknown sites count as free. (WX, WY) scratch."""
     wx_n = held_i.shape[0]
     wy_n = held_i.shape[1]
@@ -225,7 +226,7 @@ def flood_from(sx, sy, held_i, ox, oy, gene_flag, ci):  # type: ignore[no-untype
     queue_x = np.empty(wx_n * wy_n, dtype=np.int64)
     queue_y = np.empty(wx_n * wy_n, dtype=np.int64)
     seen[sx - ox, sy - oy] = 1
-    free_site = gene_at(gene_flag, ci, sx, sy) == 1
+    free_sites = 1 if gene_at(gene_flag, ci, sx, sy) == 1 else 0
     queue_x[0] = sx
     queue_y[0] = sy
     head = 0
@@ -239,19 +240,20 @@ def flood_from(sx, sy, held_i, ox, oy, gene_flag, ci):  # type: ignore[no-untype
             ny = qy + DIR_Y[k]
             flag = gene_at(gene_flag, ci, nx, ny)
             if flag != 1 and flag != HOLE_FLAG:
-                return True, free_site
+                return True, free_sites
             wx = nx - ox
             wy = ny - oy
             if not (0 <= wx < wx_n and 0 <= wy < wy_n):
-                return True, free_site  # beyond the window: assume the way open
+                return True, free_sites  # beyond the window: assume the way open
             if seen[wx, wy] or held_i[wx, wy]:
                 continue
             seen[wx, wy] = 1
-            free_site = free_site or flag == 1
+            if flag == 1:
+                free_sites += 1
             queue_x[tail] = nx
             queue_y[tail] = ny
             tail += 1
-    return False, free_site
+    return False, free_sites
 
 
 @njit
@@ -306,8 +308,8 @@ def narrows_a_neighbour(cx, cy, held_i, ox, oy, gene_flag, ci, outside):  # type
         if flag == HOLE_FLAG:
             # The capture may close the ring round a hole whose edge still has free sites.
             if outside:
-                exits, free_site = flood_from(sx, sy, held_i, ox, oy, gene_flag, ci)
-                if free_site and not exits:
+                exits, free_sites = flood_from(sx, sy, held_i, ox, oy, gene_flag, ci)
+                if free_sites > 0 and not exits:
                     shut = True
                     break
             continue
