@@ -194,7 +194,7 @@ def test_o_closes_its_ring_from_the_hole_out_where_a_way_across_it_stalled() -> 
     # forms (session 65).
     def run(rim_wave_s: float) -> ETRun:
         r = ETRun(RunConfig(shape="O", seed=9, max_time_s=14400,
-                            et=ETParams(rim_wave_s=rim_wave_s)))
+                            et=ETParams(rim_wave_s=rim_wave_s, inside_bit="off")))
         r.run()
         return r
 

@@ -6,10 +6,10 @@ from etswarm.sim.params import SimParams
 #: Until session 62 a status carried no bits of its sender's target, and a sibling
 #: remnant's robot was foreign to a searcher only by its tag or its held-sites message;
 #: regrowths traced before then run as described with this.
-#: Until session 65 a shape with a hole grew with no wave at all: a searcher took the
-#: first free site it could locate; first formations of `O` traced before then form as
-#: described with this.
-SESSION_64_FORMATION = {"rim_wave_s": 0.0}
+#: Until session 65 a shape with a hole grew with no wave at all (a searcher took the
+#: first free site it could locate), and a searcher did not say when it placed itself in
+#: the hole; first formations of `O` traced before then form as described with this.
+SESSION_64_FORMATION = {"rim_wave_s": 0.0, "inside_bit": "off"}
 
 SESSION_61_REGROWTH = {"status_signature": "off", **SESSION_64_FORMATION}
 

@@ -680,15 +680,17 @@ class ETParams:
     #: site best says so in its status (``hole_watch.INSIDE_BIT``), and every robot on the
     #: hole's edge that hears it notes a sighting, also those beside a free site of the
     #: ring, which cannot tell the two sides apart by distance alone. "off": only the
-    #: distance test.
+    #: distance test. With the rim wave, "on" formed `O` 184 of 220 runs against 158
+    #: (``docs/algorithm.md``, session 65; without it, 57 of 100 against 61, session 64).
     inside_bit: str = "on"
     #: With the watch: a capture that would leave one free site of a hole's edge
     #: reachable only through the hole (two free sites across a ring, the ring's last
     #: way, taken from its middle) is not refused when the searcher knows exactly one
     #: other searcher seen in the hole lately: that one can take the site
     #: (``hole_watch.taker_allows``). "off": refused, as any capture that cuts a free site
-    #: off from the outside.
-    hole_taker: str = "on"
+    #: off from the outside. With the rim wave and ``inside_bit``, "on" formed `O` 180 of
+    #: 220 runs against 184 (session 65), so it is off.
+    hole_taker: str = "off"
     #: In the first formation a searcher does not take a site while a neighbour site of
     #: the target nearer the seed triangle (in steps within the shape) is not known held,
     #: for its first this many seconds at the shape (``wave``): a compact shape then
