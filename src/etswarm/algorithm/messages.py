@@ -17,7 +17,9 @@ byte   placed robot (Inactive ..   Queued / Search robot
 6      offset x from the site's    a searcher's bits: ANCHORED_BIT when
        centre (int8, units of      it hears a stationary robot,
        0.5 mm, see ``offsets``)    YIELDING_BIT while it yields to
-                                   another searcher; a Queued robot's
+                                   another searcher, INSIDE_BIT while
+                                   its readings place it in a hole
+                                   (``hole_watch``); a Queued robot's
                                    release hold left (units of
                                    HOLD_UNIT_TICKS, see ``release``)
 7      neighbour-site bits (bit k  robots released so far, low byte
