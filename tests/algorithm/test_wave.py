@@ -206,3 +206,19 @@ def test_o_closes_its_ring_from_the_hole_out_where_a_way_across_it_stalled() -> 
     assert summary["formed"], summary["components"]
     assert summary["jaccard"] == 1.0 and summary["duplicate_tags"] == []
     assert min_pair_distance(with_rim.world.pos, with_rim.world.present) > 2 * 16.5 - 1.0
+
+
+def test_no_wave_on_the_command_line_turns_the_rim_wave_off_too(monkeypatch) -> None:  # type: ignore[no-untyped-def]
+    from click.testing import CliRunner
+
+    from etswarm.cli import run_command, run_outputs
+
+    seen = []
+    monkeypatch.setattr(run_outputs, "drive",
+                        lambda et_run, **_: seen.append(et_run.controller.ci.copy()) or {})
+    for flag in ("--wave", "--no-wave"):
+        result = CliRunner().invoke(run_command.run, ["O", "--max-time", "1", "--json", flag])
+        assert result.exit_code == 0, result.output
+    on, off = seen
+    assert on[C_RIM_WAVE] > 0 and on[C_WAVE] == on[C_RIM_WAVE]
+    assert off[C_RIM_WAVE] == 0 and off[C_WAVE] == 0
