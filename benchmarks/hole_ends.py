@@ -24,15 +24,13 @@ from etswarm.algorithm.run import ETRun, RunConfig
 from etswarm.algorithm.states import State
 from etswarm.errors import EtswarmError
 from etswarm.measures.formation import in_holes
-from etswarm.shapes.lattice import NEIGHBOUR_OFFSETS, enclosed_cells
+from etswarm.shapes.lattice import hole_edge_cells
 
 
-def on_hole_edge(free: list[list[int]], holes: set[tuple[int, int]]) -> list[list[int]]:
-    """The tags of ``free`` that have a neighbour site in ``holes``."""
-    return [
-        f for f in free
-        if any((f[0] + int(dx), f[1] + int(dy)) in holes for dx, dy in NEIGHBOUR_OFFSETS)
-    ]
+def on_hole_edge(free: list[list[int]], target: np.ndarray) -> list[list[int]]:
+    """The tags of ``free`` on the edge of a hole of ``target`` ((P, 2) tags)."""
+    edge = {(x, y) for x, y in hole_edge_cells(target).tolist()}
+    return [f for f in free if tuple(f) in edge]
 
 
 def run_end(shape: str, seed: int, max_time_s: float, et: ETParams) -> dict[str, object]:
@@ -47,9 +45,8 @@ def run_end(shape: str, seed: int, max_time_s: float, et: ETParams) -> dict[str,
         inside = int(in_holes(run.world.pos[searching], run.world.pos, run.controller.tags,
                               stable, run.target, run.config.et.spacing_mm).sum())
     free = [t for c in summary["components"] for t in c.get("free_tags", [])]
-    holes = {tuple(t) for t in enclosed_cells(run.target).tolist()}
     return {"seed": seed, "formed": summary["formed"], "free": free,
-            "edge": on_hole_edge(free, holes), "searchers": int(searching.sum()),
+            "edge": on_hole_edge(free, run.target), "searchers": int(searching.sum()),
             "in_hole": inside}
 
 

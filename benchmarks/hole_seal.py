@@ -18,7 +18,7 @@ from __future__ import annotations
 
 import click
 import numpy as np
-from hole_ends import on_hole_edge, run_options
+from hole_ends import run_options
 
 from etswarm.algorithm.memory import R_WATCH_ID0, R_WATCH_ID1, R_WATCH_T0, R_WATCH_T1
 from etswarm.algorithm.params import ETParams
@@ -26,18 +26,12 @@ from etswarm.algorithm.run import ETRun, RunConfig
 from etswarm.algorithm.states import State
 from etswarm.errors import EtswarmError
 from etswarm.measures.formation import in_holes
-from etswarm.shapes.lattice import enclosed_cells
-
-
-def hole_edge(target: np.ndarray) -> set[tuple[int, int]]:
-    """The sites of ``target`` ((P, 2) tags) next to one of its holes."""
-    holes = {tuple(t) for t in enclosed_cells(target).tolist()}
-    return {(x, y) for x, y in on_hole_edge(target.tolist(), holes)}
+from etswarm.shapes.lattice import hole_edge_cells
 
 
 def sealing(run: ETRun, every_ticks: int, max_ticks: int) -> dict[str, object] | None:
     """Run until the holes' edges are all held (or the run ends); what stood then."""
-    edge = hole_edge(run.target)
+    edge = {(x, y) for x, y in hole_edge_cells(run.target).tolist()}
     if not edge:
         raise click.ClickException("the shape has no hole")
     free_before: set[tuple[int, int]] = set(edge)

@@ -14,7 +14,7 @@ from etswarm.algorithm.run import ETRun, RunConfig
 from etswarm.algorithm.states import State
 from etswarm.algorithm.wave import HOPS_SHIFT, behind_wave, nn_of, rim_hops, seed_hops
 from etswarm.measures.formation import duplicate_tags, min_pair_distance
-from etswarm.shapes.lattice import neighbour_counts
+from etswarm.shapes.lattice import hole_edge_cells, neighbour_counts
 
 from .test_site_memory import ORIGIN, SIZE, hexagon_gene, memory_of, ring
 from .traced import NATIVE_MATHS, SESSION_47_FORMATION
@@ -130,6 +130,8 @@ def ring_of_three_rows() -> np.ndarray:
 
 def test_rim_hops_count_steps_from_the_edge_of_the_hole() -> None:
     cells = ring_of_three_rows()
+    assert {tuple(t) for t in hole_edge_cells(cells).tolist()} == set(ring(1))
+    assert len(hole_edge_cells(hexagon_cells(3))) == 0  # no hole, no edge
     hops = rim_hops(cells)
     assert hops.tolist() == [hex_distance(x, y) - 1 for x, y in cells.tolist()]
     # The edge of the hole is where the count starts, whatever the shape around it:

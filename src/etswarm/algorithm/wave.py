@@ -25,7 +25,7 @@ from etswarm.algorithm.fill_order import locatable
 from etswarm.algorithm.kernel_util import DIR_X, DIR_Y, first_growth, gene_at
 from etswarm.algorithm.params import C_RIM_WAVE, C_WAVE
 from etswarm.algorithm.site_memory import is_held
-from etswarm.shapes.lattice import NEIGHBOUR_OFFSETS, enclosed_cells, steps_from
+from etswarm.shapes.lattice import hole_edge_cells, steps_from
 
 #: ``gene_nn`` holds NN in its low bits and the hop count from the seeds above them.
 HOPS_SHIFT = 3
@@ -80,13 +80,7 @@ def seed_hops(cells: np.ndarray, seed_tags: np.ndarray) -> np.ndarray:
 
 def rim_hops(cells: np.ndarray) -> np.ndarray:
     """Hops (P,) int64 of each of ``cells`` ((P, 2) tags) from the nearest cell on the edge
-    of a hole (a cell with a neighbour in ``enclosed_cells``), stepping between
+    of a hole (``lattice.hole_edge_cells``), stepping between
     neighbouring cells of the shape only; 0 on the edges. Cells no edge reaches (a part
     of the shape round no hole) get the largest count plus one."""
-    holes = {tuple(t) for t in enclosed_cells(cells).tolist()}
-    edge = np.array(
-        [c for c in np.asarray(cells).tolist()
-         if any((c[0] + int(dx), c[1] + int(dy)) in holes for dx, dy in NEIGHBOUR_OFFSETS)],
-        dtype=np.int64,
-    ).reshape(-1, 2)
-    return seed_hops(cells, edge)
+    return seed_hops(cells, hole_edge_cells(cells))

@@ -217,6 +217,19 @@ def enclosed_cells(cells: np.ndarray) -> np.ndarray:
     return sort_cells(np.argwhere(holes).astype(np.int64) + lo)
 
 
+def hole_edge_cells(cells: np.ndarray) -> np.ndarray:
+    """(E, 2) int64 sorted tags of the cells of ``cells`` with a neighbour site in one of
+    its holes (``enclosed_cells``): the inner edge of a ring. Empty for a shape without
+    holes."""
+    cells = as_cells(cells)
+    holes = {tuple(t) for t in enclosed_cells(cells).tolist()}
+    edge = [
+        c for c in cells.tolist()
+        if any((c[0] + int(dx), c[1] + int(dy)) in holes for dx, dy in NEIGHBOUR_OFFSETS)
+    ]
+    return sort_cells(np.array(edge, dtype=np.int64).reshape(-1, 2))
+
+
 def is_connected(cells: np.ndarray) -> bool:
     """True when ``cells`` is non-empty and forms one connected piece on the lattice."""
     cells = as_cells(cells)
