@@ -47,6 +47,7 @@ from etswarm.algorithm.params import (
     F_BALANCE_TOL,
     F_CONSIST_TOL,
     F_CONSIST_WIDEN,
+    F_FOLD_SKIP,
     F_MIRROR_MARGIN,
     F_PAIR_AIM,
     F_PAIR_TOL,
@@ -168,9 +169,11 @@ def find_site(  # type: ignore[no-untyped-def]
     steers by (see ``came_from``; nothing when it steers by neither), or with
     ``ETParams.came_order`` the one of the two it met first (``met_order``). ``c`` must also have
     gene flag 1, be held by no robot it knows of, agree with every placed robot heard since
-    ``since`` and, when ``strict``, every known robot of a neighbouring site must have been
-    heard since ``since``; and an Active robot must be adjacent to it (the least TS among
-    them is returned); and taking it must not shut a free shape site next to it in: with
+    ``since`` (but one more than ``F_FOLD_SKIP`` mm from ``c`` on the lattice whose reading
+    does not fit ``c2`` either: only a fold brought it in range) and, when ``strict``, every
+    known robot of a neighbouring site must have been heard since ``since``; and an Active
+    robot must be adjacent to it (the least TS among them is returned); and taking it must
+    not shut a free shape site next to it in: with
     ``C_HOLE_MEMORY`` by the robot's memory ``held_i`` ((WX, WY) window at tag (ox, oy), see
     ``site_memory``) over the whole shape, else from the robots it hears
     (``encloses_a_site``, ``closes_a_hole``).
@@ -194,6 +197,7 @@ def find_site(  # type: ignore[no-untyped-def]
     pair_tol = cf[F_PAIR_TOL] * scale
     consist_tol = cf[F_CONSIST_TOL]
     mirror_margin = cf[F_MIRROR_MARGIN]
+    fold_skip = cf[F_FOLD_SKIP]
     # a pocket candidate may disagree more (checked against the plain one below)
     consist_wide = consist_tol * min(tol_scale, cf[F_CONSIST_WIDEN])
     second_ring = ci[C_SECOND_RING]
@@ -303,6 +307,13 @@ def find_site(  # type: ignore[no-untyped-def]
                     jx = nb[i, j, NB_TX]
                     jy = nb[i, j, NB_TY]
                     pred = expected_distance(i, j, cx, cy, nb, ci, cf)
+                    if (
+                        fold_skip > 0
+                        and pred > fold_skip
+                        and abs(nb_dist[i, j] - expected_distance(i, j, c2x, c2y, nb, ci, cf))
+                        > consist_tol
+                    ):
+                        continue  # out of the site's range and not at the mirror: a fold
                     if nb[i, j, NB_LAST] >= since:
                         e = abs(nb_dist[i, j] - pred)
                         if e > consist_wide or (
