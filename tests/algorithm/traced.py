@@ -10,8 +10,8 @@ from etswarm.sim.params import SimParams
 #: first free site it could locate), and a searcher did not say when it placed itself in
 #: the hole; first formations of `O` traced before then form as described with this.
 #: Until session 66 every placed robot a searcher heard took part in its consistency check,
-#: even one the lattice puts out of radio range of both sites of the pair; scenarios
-#: traced before then run as described with this.
+#: even one the lattice puts out of radio range of the candidate site whose reading fits
+#: the pair's other site no better; scenarios traced before then run as described with this.
 SESSION_65_SEARCH = {"fold_skip_mm": 0.0}
 
 SESSION_64_FORMATION = {"rim_wave_s": 0.0, "inside_bit": "off", **SESSION_65_SEARCH}
