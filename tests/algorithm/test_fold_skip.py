@@ -1,6 +1,7 @@
-"""A placed robot that the lattice puts out of radio range of a pair's candidate site, and
-whose reading does not fit the pair's other site either, is left out of the candidate's
-consistency check (``ETParams.fold_skip_mm``): only a folded lattice brings it in range."""
+"""After damage, a placed robot that the lattice puts out of radio range of a pair's
+candidate site, and whose reading does not fit the pair's other site either, is left out of
+the candidate's consistency check (``ETParams.regrowth_fold_skip_mm``): only a folded
+lattice brings it in range."""
 
 from __future__ import annotations
 
@@ -8,7 +9,7 @@ import numpy as np
 import pytest
 
 from etswarm.algorithm.localise import find_site, window_centre
-from etswarm.algorithm.memory import NB_ID, NB_LAST, NB_STATE, NB_TS, NB_TX, NB_TY
+from etswarm.algorithm.memory import NB_ID, NB_LAST, NB_STATE, NB_TS, NB_TX, NB_TY, R_GROWTH
 from etswarm.algorithm.params import ETParams
 from etswarm.algorithm.run import RunConfig
 from etswarm.algorithm.search import NO_SITE
@@ -22,12 +23,17 @@ from .test_pair_side import GENE_X0, WINDOW, pair_world
 NEITHER = 5
 
 
-def site_with(others: list[tuple[tuple[int, int], float]], fold_skip: float):  # type: ignore[no-untyped-def]
+def site_with(  # type: ignore[no-untyped-def]
+    others: list[tuple[tuple[int, int], float]], fold_skip: float, regrowth: bool = True
+):
     """find_site for a searcher midway between the pair of ``pair_world`` (A on (0, 0) and
     B on (1, 0), read at 40 and 40.6 mm) that also reads a Stable robot on each tag of
-    ``others`` at the given distance (mm)."""
+    ``others`` at the given distance (mm); ``regrowth``: it works for a regenerated target
+    (else the first formation)."""
     _, nb, nb_dist, gene_flag, _, _, _, held = pair_world()
-    ci, cf = ETParams(fold_skip_mm=fold_skip).pack(31, gene_x0=GENE_X0, gene_y0=GENE_X0)
+    ci, cf = ETParams(regrowth_fold_skip_mm=fold_skip).pack(31, gene_x0=GENE_X0, gene_y0=GENE_X0)
+    ri = ANYWHERE[0].copy()
+    ri[0, R_GROWTH] = 1 if regrowth else 0
     for slot, (tag, reading) in enumerate(others, start=2):
         gene_flag[tag[0] - GENE_X0, tag[1] - GENE_X0] = 1
         nb[0, slot, NB_ID] = slot + 1
@@ -39,7 +45,7 @@ def site_with(others: list[tuple[tuple[int, int], float]], fold_skip: float):  #
     nb_dist[0, :2] = (40.0, 40.6)
     found, x, y, _ = find_site(
         0, 10, 0, True, NEITHER, -1, 0, nb, nb_dist, gene_flag.astype(np.int64), ci, cf,
-        1.0, 0, held[0], *WINDOW, window_centre(cf, 0), 1.0, NO_SITE, NO_SITE, *ANYWHERE,
+        1.0, 0, held[0], *WINDOW, window_centre(cf, 0), 1.0, NO_SITE, NO_SITE, ri, ANYWHERE[1],
     )
     return found, (x, y)
 
@@ -54,12 +60,15 @@ def test_a_robot_heard_only_where_the_lattice_folds_is_left_out() -> None:
     # on the lattice. Read at 56 mm, as on H split x=mid seed 106, it vetoed the site.
     folded = ((-2, 1), 56.0)
     assert site_with([MIRROR_HELD, folded], 0.0) == (False, (0, 0))
-    assert site_with([MIRROR_HELD, folded], ETParams().fold_skip_mm) == (True, (1, 1))
+    assert site_with([MIRROR_HELD, folded], ETParams().regrowth_fold_skip_mm) == (True, (1, 1))
+    # In the first formation every robot heard is still checked.
+    first = site_with([MIRROR_HELD, folded], ETParams().regrowth_fold_skip_mm, regrowth=False)
+    assert first == (False, (0, 0))
     # Without it the site is taken either way.
     assert site_with([MIRROR_HELD], 0.0) == (True, (1, 1))
 
 
-@pytest.mark.parametrize("fold_skip", [0.0, ETParams().fold_skip_mm])
+@pytest.mark.parametrize("fold_skip", [0.0, ETParams().regrowth_fold_skip_mm])
 def test_a_robot_far_from_one_site_but_next_to_the_other_still_counts(
     fold_skip: float,
 ) -> None:
@@ -71,7 +80,8 @@ def test_a_robot_far_from_one_site_but_next_to_the_other_still_counts(
 def test_a_robot_in_range_of_the_site_still_vetoes_it() -> None:
     # (3, 1) is 2 d = 80 mm from (1, 1), under the 100 mm bound: read at 40 mm it is off
     # by 40 and the site is refused, as before.
-    assert site_with([MIRROR_HELD, ((3, 1), 40.0)], ETParams().fold_skip_mm) == (False, (0, 0))
+    near = ((3, 1), 40.0)
+    assert site_with([MIRROR_HELD, near], ETParams().regrowth_fold_skip_mm) == (False, (0, 0))
 
 
 def h_split_x_106(**et: object) -> list[tuple[int, int | None, int, bool]]:
@@ -86,5 +96,5 @@ def test_the_scaled_h_reforms_where_its_legs_have_bent_together() -> None:
     # The right remnant's scaled H bent its two legs towards each other: its last free
     # site (2, 2) predicts 120 mm to robot (-1, 2) on the other leg, which read 56.
     assert h_split_x_106() == [(25, 25, 25, True), (25, 25, 25, True)]
-    rows = h_split_x_106(fold_skip_mm=0.0)
+    rows = h_split_x_106(regrowth_fold_skip_mm=0.0)
     assert (25, 25, 25, False) in rows

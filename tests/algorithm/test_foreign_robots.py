@@ -128,13 +128,9 @@ def site_beside_a_foreign_robot(et: ETParams) -> tuple[bool, int, int]:
 def test_a_robot_of_another_shape_does_not_veto_a_site() -> None:
     # Session 46, traced on `H` `split y=mid` seed 11: the last free site of one leg's
     # scaled `H` had its two holders at d, but a robot of the other leg, 70 mm away,
-    # contradicted it on every pass; the searcher went round for 2 h. (Its tag is also
-    # more than fold_skip_mm from both sites of the pair, so since session 66 that rule
-    # alone leaves it out too; this test pins it off to see the foreign rule.)
-    no_fold = {"fold_skip_mm": 0.0}
-    assert site_beside_a_foreign_robot(ETParams(foreign_robots="follow", **no_fold))[0] is False
-    assert site_beside_a_foreign_robot(ETParams(**no_fold)) == (True, 1, 1)
-    assert site_beside_a_foreign_robot(ETParams(foreign_robots="follow")) == (True, 1, 1)
+    # contradicted it on every pass; the searcher went round for 2 h.
+    assert site_beside_a_foreign_robot(ETParams(foreign_robots="follow"))[0] is False
+    assert site_beside_a_foreign_robot(ETParams()) == (True, 1, 1)
 
 
 def sibling_held_message(epoch: int, signature: int, sent_epoch: int | None = None):  # type: ignore[no-untyped-def]

@@ -43,7 +43,6 @@ from etswarm.shapes.lattice import NEIGHBOUR_OFFSETS, enclosed_cells
 
 from .test_hole_watch import o_memory
 from .test_site_memory import ORIGIN, ring, ring_gene
-from .traced import SESSION_65_SEARCH
 
 D = 40.0
 TICK = 1000
@@ -221,7 +220,7 @@ def test_o_seed_7_closes_its_last_way_across_the_ring_with_the_taker_rule() -> N
     # while one is seen in the hole, and that one takes the hole's edge site.
     way = [[-1, -5], [-1, -4], [0, -3]]
     # (Traced in session 64, before the rim wave, which grows this seed otherwise.)
-    traced = {"rim_wave_s": 0.0, **SESSION_65_SEARCH}
+    traced = {"rim_wave_s": 0.0}
     stuck = ETRun(RunConfig(shape="O", seed=7, max_time_s=7200, et=ETParams(**traced)))
     summary = stuck.run()
     assert not summary["formed"]
@@ -244,7 +243,7 @@ def test_o_seed_73_keeps_its_hole_open_for_a_searcher_that_says_it_is_inside() -
     # ring forms (session 65).
     def run(inside_bit: str) -> ETRun:
         r = ETRun(RunConfig(shape="O", seed=73, max_time_s=14400,
-                            et=ETParams(inside_bit=inside_bit, **SESSION_65_SEARCH)))
+                            et=ETParams(inside_bit=inside_bit)))
         r.run()
         return r
 

@@ -17,7 +17,7 @@ from etswarm.measures.formation import duplicate_tags, min_pair_distance
 from etswarm.shapes.lattice import hole_edge_cells, neighbour_counts
 
 from .test_site_memory import ORIGIN, SIZE, hexagon_gene, memory_of, ring
-from .traced import NATIVE_MATHS, SESSION_47_FORMATION, SESSION_65_SEARCH
+from .traced import NATIVE_MATHS, SESSION_47_FORMATION
 
 SEEDS = np.array([[0, 0], [1, 0], [0, 1]])
 
@@ -196,8 +196,7 @@ def test_o_closes_its_ring_from_the_hole_out_where_a_way_across_it_stalled() -> 
     # forms (session 65).
     def run(rim_wave_s: float) -> ETRun:
         r = ETRun(RunConfig(shape="O", seed=9, max_time_s=14400,
-                            et=ETParams(rim_wave_s=rim_wave_s, inside_bit="off",
-                                        **SESSION_65_SEARCH)))
+                            et=ETParams(rim_wave_s=rim_wave_s, inside_bit="off")))
         r.run()
         return r
 

@@ -9,12 +9,13 @@ from etswarm.sim.params import SimParams
 #: Until session 65 a shape with a hole grew with no wave at all (a searcher took the
 #: first free site it could locate), and a searcher did not say when it placed itself in
 #: the hole; first formations of `O` traced before then form as described with this.
-#: Until session 66 every placed robot a searcher heard took part in its consistency check,
-#: even one the lattice puts out of radio range of the candidate site whose reading fits
-#: the pair's other site no better; scenarios traced before then run as described with this.
-SESSION_65_SEARCH = {"fold_skip_mm": 0.0}
+#: Until session 66 every placed robot a searcher heard after damage took part in its
+#: consistency check, even one the lattice puts out of radio range of the candidate site
+#: whose reading fits the pair's other site no better; regrowths traced before then run
+#: as described with this (first formations are unchanged).
+SESSION_65_REGROWTH = {"regrowth_fold_skip_mm": 0.0}
 
-SESSION_64_FORMATION = {"rim_wave_s": 0.0, "inside_bit": "off", **SESSION_65_SEARCH}
+SESSION_64_FORMATION = {"rim_wave_s": 0.0, "inside_bit": "off", **SESSION_65_REGROWTH}
 
 SESSION_61_REGROWTH = {"status_signature": "off", **SESSION_64_FORMATION}
 

@@ -20,6 +20,7 @@ from etswarm.algorithm.kernel_util import (
     FAR,
     STABLE,
     direction_index,
+    first_growth,
     gene_at,
     is_placed,
 )
@@ -47,10 +48,10 @@ from etswarm.algorithm.params import (
     F_BALANCE_TOL,
     F_CONSIST_TOL,
     F_CONSIST_WIDEN,
-    F_FOLD_SKIP,
     F_MIRROR_MARGIN,
     F_PAIR_AIM,
     F_PAIR_TOL,
+    F_REGROW_FOLD_SKIP,
     F_SPACING,
 )
 from etswarm.algorithm.site_memory import (
@@ -169,8 +170,9 @@ def find_site(  # type: ignore[no-untyped-def]
     steers by (see ``came_from``; nothing when it steers by neither), or with
     ``ETParams.came_order`` the one of the two it met first (``met_order``). ``c`` must also have
     gene flag 1, be held by no robot it knows of, agree with every placed robot heard since
-    ``since`` (but one more than ``F_FOLD_SKIP`` mm from ``c`` on the lattice whose reading
-    does not fit ``c2`` either: only a fold brought it in range) and, when ``strict``, every
+    ``since`` (but, after damage, one more than ``F_REGROW_FOLD_SKIP`` mm from ``c`` on the
+    lattice whose reading does not fit ``c2`` either: only a fold brought it in range) and,
+    when ``strict``, every
     known robot of a neighbouring site must have been heard since ``since``; and an Active
     robot must be adjacent to it (the least TS among them is returned); and taking it must
     not shut a free shape site next to it in: with
@@ -197,7 +199,7 @@ def find_site(  # type: ignore[no-untyped-def]
     pair_tol = cf[F_PAIR_TOL] * scale
     consist_tol = cf[F_CONSIST_TOL]
     mirror_margin = cf[F_MIRROR_MARGIN]
-    fold_skip = cf[F_FOLD_SKIP]
+    fold_skip = 0.0 if first_growth(i, ri) else cf[F_REGROW_FOLD_SKIP]
     # a pocket candidate may disagree more (checked against the plain one below)
     consist_wide = consist_tol * min(tol_scale, cf[F_CONSIST_WIDEN])
     second_ring = ci[C_SECOND_RING]

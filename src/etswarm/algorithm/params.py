@@ -124,7 +124,7 @@ F_PINCH_PATIENCE = 29  # ticks at the shape after which a searcher refuses no mo
 F_PORTABLE_MATH = 30  # 1.0: odometry and homing use ``sim.fpmath`` (``SimParams.portable_math``)
 F_FORMER_SLACK = 31  # a searcher near its former site: the slack (mm) on its odometric reach
 F_MIRROR_MARGIN = 32  # mm: a third robot rules a mirror out only fitting the site this much better
-F_FOLD_SKIP = 33  # mm: a robot this far from a candidate, not fitting its mirror, is not checked
+F_REGROW_FOLD_SKIP = 33  # mm: after damage a robot this far from a site, off its mirror, is mute
 N_CF = 34
 
 #: The DESIGN section 2 robot: 7 mm/s, 13 deg/s, legs at 125.5 deg, radius 16.5 mm.
@@ -204,7 +204,7 @@ NON_NEGATIVE: frozenset[str] = frozenset(
         "regrowth_capture_offset_mm", "remembered_neighbours_s", "regrowth_unpinch_mm",
         "isolated_rejoin_s", "hole_watch_s", "wave_s", "rim_wave_s", "regrowth_plunge_s",
         "first_plunge_after_s", "lost_escape_s", "offset_leave_mm", "former_site_slack_mm",
-        "from_return_s", "mirror_margin_mm", "fold_skip_mm",
+        "from_return_s", "mirror_margin_mm", "regrowth_fold_skip_mm",
     }
 )
 #: Parameters that may take any sign.
@@ -257,15 +257,16 @@ class ETParams:
     #: sites predict 69-71 mm, so a searcher took the site on the far side of the pair, 78 mm
     #: from where it stood.
     mirror_margin_mm: float = 8.0
-    #: A placed robot whose tag puts it more than this far (mm) from a pair's candidate
-    #: site is out of radio range of it on the lattice: a searcher there hears it only
-    #: where the lattice has folded. When its reading does not fit the pair's other site
-    #: either (within ``consistency_tol_mm``), it is left out of the candidate's
-    #: consistency check; one that fits the other site still vetoes. On ``H``
+    #: After damage, a placed robot whose tag puts it more than this far (mm) from a pair's
+    #: candidate site is out of radio range of it on the lattice: a searcher there hears it
+    #: only where the lattice has folded. When its reading does not fit the pair's other
+    #: site either (within ``consistency_tol_mm``), it is left out of the candidate's
+    #: consistency check; one that fits the other site still vetoes. (In first formations
+    #: every robot heard is checked: there the rule lost as many runs as it gained.) On ``H``
     #: ``split x=mid`` seed 106 the scaled H's two legs had bent towards each other, and
     #: robot (-1, 2) read 56 mm where the last free site (2, 2) predicts 120: no searcher
     #: took the site for 7 h. 0: every robot heard is checked (before session 66).
-    fold_skip_mm: float = 100.0
+    regrowth_fold_skip_mm: float = 100.0
     #: At a pocket (see ``widen_max``) the consistency tolerance widens with the pair
     #: window, up to this factor: where the lattice has pinched a site's mouth narrower
     #: than a body, a searcher can only stop at the mouth, farther from the robot inside
@@ -907,7 +908,7 @@ class ETParams:
         cf[F_AIM_RELAX] = self.pair_aim_relax_s * ticks_per_s
         cf[F_CONSIST_TOL] = self.consistency_tol_mm
         cf[F_MIRROR_MARGIN] = self.mirror_margin_mm
-        cf[F_FOLD_SKIP] = self.fold_skip_mm
+        cf[F_REGROW_FOLD_SKIP] = self.regrowth_fold_skip_mm
         cf[F_CONSIST_WIDEN] = self.consistency_widen_max
         cf[F_SETTLE_SCALE] = self.settle_tol_scale
         cf[F_YIELD_DIST] = self.yield_distance_mm
