@@ -172,10 +172,9 @@ def find_site(  # type: ignore[no-untyped-def]
     gene flag 1, be held by no robot it knows of, agree with every placed robot heard since
     ``since`` (but, after damage, one more than ``F_REGROW_FOLD_SKIP`` mm from ``c`` on the
     lattice whose reading does not fit ``c2`` either: only a fold brought it in range) and,
-    when ``strict``, every
-    known robot of a neighbouring site must have been heard since ``since``; and an Active
-    robot must be adjacent to it (the least TS among them is returned); and taking it must
-    not shut a free shape site next to it in: with
+    when ``strict``, every known robot of a neighbouring site must have been heard since
+    ``since``; and an Active robot must be adjacent to it (the least TS among them is
+    returned); and taking it must not shut a free shape site next to it in: with
     ``C_HOLE_MEMORY`` by the robot's memory ``held_i`` ((WX, WY) window at tag (ox, oy), see
     ``site_memory``) over the whole shape, else from the robots it hears
     (``encloses_a_site``, ``closes_a_hole``).
