@@ -2,10 +2,12 @@
 (on the hole's edge or not) and how many searchers are shut in the hole.
 
 Runs SHAPE for each seed to its time limit and prints one line per run that did not
-form: the free tags, those on a hole's edge, the searchers and how many of them stand in
-the hole (the nearest site of the lattice the Stable robots fit is a hole site:
-``measures.formation.in_holes``). Then the counts. Used for ``O`` ("Sessions 42-43" in
-docs/algorithm.md).
+form: the free tags, those on a hole's edge, whether they make a way across the ring (a
+chain of free sites, six-neighbour steps, from a hole's edge to a site beside the
+outside: every capture rule refuses its sites, session 64), the searchers and how many of
+them stand in the hole (the nearest site of the lattice the Stable robots fit is a hole
+site: ``measures.formation.in_holes``). Then the counts. Used for ``O`` ("Sessions 42-43"
+and "Session 67" in docs/algorithm.md).
 
     .venv/bin/python benchmarks/hole_ends.py O --seeds 40 --first-seed 100 \\
         [--et hole_watch_s=0] [--max-time 14400]
@@ -23,7 +25,7 @@ from etswarm.algorithm.params import ETParams
 from etswarm.algorithm.run import ETRun, RunConfig
 from etswarm.algorithm.states import State
 from etswarm.errors import EtswarmError
-from etswarm.measures.formation import in_holes
+from etswarm.measures.formation import in_holes, way_across
 from etswarm.shapes.lattice import hole_edge_cells
 
 
@@ -46,8 +48,8 @@ def run_end(shape: str, seed: int, max_time_s: float, et: ETParams) -> dict[str,
                               stable, run.target, run.config.et.spacing_mm).sum())
     free = [t for c in summary["components"] for t in c.get("free_tags", [])]
     return {"seed": seed, "formed": summary["formed"], "free": free,
-            "edge": on_hole_edge(free, run.target), "searchers": int(searching.sum()),
-            "in_hole": inside}
+            "edge": on_hole_edge(free, run.target), "way": way_across(free, run.target),
+            "searchers": int(searching.sum()), "in_hole": inside}
 
 
 def run_options(command: Callable[..., None]) -> Callable[..., None]:
@@ -79,14 +81,17 @@ def main(shape: str, seeds: int, first_seed: int, max_time_s: float, et: ETParam
             raise click.ClickException(str(err)) from None
         ends.append(end)
         if not end["formed"]:
-            print(f"seed {seed}: free {end['free']}, on the hole's edge {end['edge']}, "
+            way = ", a way across" if end["way"] else ""
+            print(f"seed {seed}: free {end['free']}, on the hole's edge {end['edge']}{way}, "
                   f"{end['searchers']} searching, {end['in_hole']} in the hole", flush=True)
     unformed = [e for e in ends if not e["formed"]]
     shut_in = sum(1 for e in unformed if e["in_hole"] > 0)
     edge_free = sum(1 for e in unformed if e["edge"])
+    ways = sum(1 for e in unformed if e["way"])
     print(f"{len(ends) - len(unformed)} of {len(ends)} formed; of the {len(unformed)} others, "
           f"{shut_in} with a searcher in the hole, {edge_free} with a free site on the "
-          f"hole's edge; searchers in holes {int(np.sum([e['in_hole'] for e in unformed]))}")
+          f"hole's edge, {ways} on a way across; searchers in holes "
+          f"{int(np.sum([e['in_hole'] for e in unformed]))}")
 
 
 if __name__ == "__main__":

@@ -167,6 +167,32 @@ def shut_in_holes(
     return int(np.count_nonzero(in_holes(pos[searching], pos, tags, holds, target, spacing_mm)))
 
 
+def way_across(free: list[tuple[int, int]], target: np.ndarray) -> bool:
+    """Some of the ``free`` tags of ``target`` ((P, 2) tags) join a site on the edge of one
+    of its holes to a site beside the outside (a neighbour site neither in the shape nor
+    in a hole), through free tags alone (six-neighbour steps): a way across a ring, the end
+    every capture rule refuses (docs/algorithm.md, "Session 64"). False for a target
+    without holes."""
+    cells = _tag_set(target)
+    holes = _tag_set(enclosed_cells(target))
+    free_set = {(int(x), int(y)) for x, y in free}
+
+    def around(site: tuple[int, int]) -> list[tuple[int, int]]:
+        return [(site[0] + int(dx), site[1] + int(dy)) for dx, dy in NEIGHBOUR_OFFSETS]
+
+    frontier = [t for t in free_set if any(n in holes for n in around(t))]
+    reached = set(frontier)
+    while frontier:
+        site = frontier.pop()
+        if any(n not in cells and n not in holes for n in around(site)):
+            return True
+        for n in around(site):
+            if n in free_set and n not in reached:
+                reached.add(n)
+                frontier.append(n)
+    return False
+
+
 def components(pos: np.ndarray, members: np.ndarray, radius_mm: float) -> list[np.ndarray]:
     """Connected groups of ``members`` robots (links between centres <= radius_mm).
 
