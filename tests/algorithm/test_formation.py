@@ -171,6 +171,7 @@ def test_the_ring_of_o_stays_open_while_its_edge_sees_a_searcher_in_the_hole() -
     ).any()
     # the summary says so: every searcher of the group is shut in the hole
     assert summary["components"][0]["shut_in_holes"] == searching.sum() > 0
+    assert summary["components"][0]["way_across"] is False  # the hole's edge is all held
     run = run_formation("O", 0, max_time_s=10800, sim_params=NATIVE_MATHS,
                         et=ETParams(**SESSION_57_SEARCH))
     summary = run.summary()

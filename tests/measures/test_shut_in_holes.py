@@ -55,3 +55,17 @@ def test_the_run_summary_says_how_many_searchers_are_in_the_hole() -> None:
     ]
     del comp["shut_in_holes"]  # a summary written before the count existed
     assert missing_lines([comp]) == ["group 0: 1 target sites free: (3,3); 2 robots searching"]
+
+
+def test_the_run_summary_says_when_the_free_sites_make_a_way_across() -> None:
+    comp = {"formed": False, "too_small": False, "robots": 66, "target_cells": 66,
+            "free_sites": 3, "free_tags": [[3, 0], [4, 0], [5, 0]], "searching": 3,
+            "shut_in_holes": 0, "way_across": True}
+    assert missing_lines([comp]) == [
+        "group 0: 3 target sites free: (3,0) (4,0) (5,0); 3 robots searching; the free sites"
+        " make a way across the ring"
+    ]
+    comp["way_across"] = False
+    assert missing_lines([comp]) == [
+        "group 0: 3 target sites free: (3,0) (4,0) (5,0); 3 robots searching"
+    ]

@@ -54,6 +54,7 @@ from etswarm.measures.formation import (
     rigid_fit,
     shut_in_holes,
     stretched_links,
+    way_across,
 )
 from etswarm.seeding import stream
 from etswarm.shapes import load_shape, scale
@@ -553,6 +554,9 @@ class ETRun:
                         pos[group], tags[group], holds[group],
                         states[group] == State.SEARCH, target, d,
                     ),
+                    # ... and whether the free sites join a hole's edge to the outside, a
+                    # way across the ring that every capture rule refuses
+                    "way_across": way_across(free, target),
                     # Where the robots stand, whatever their tags say: RMS off their sites
                     # after the group's best rigid fit, and the links between holders of
                     # neighbouring tags that have torn apart (``stretched_links``).

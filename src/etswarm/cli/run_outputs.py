@@ -198,7 +198,8 @@ def election_lines(events: list[dict[str, Any]]) -> list[str]:
 
 
 def missing_lines(components: list[dict[str, Any]]) -> list[str]:
-    """Lines on what the unformed groups of robots lack: free sites and searchers; lone
+    """Lines on what the unformed groups of robots lack: free sites and searchers (those in
+    a hole of the target, and whether the free sites make a way across a ring); lone
     robots out of range of every other (lost searchers) on one line."""
     lines = []
     lone = 0
@@ -216,6 +217,7 @@ def missing_lines(components: list[dict[str, Any]]) -> list[str]:
             + f"; {comp['searching']} robots searching"
             + (f", {inside} of them in the shape's hole" if (inside := comp.get("shut_in_holes"))
                else "")
+            + ("; the free sites make a way across the ring" if comp.get("way_across") else "")
         )
     if lone:
         lines.append(f"{lone} robot(s) out of range of every other robot")

@@ -173,6 +173,8 @@ def way_across(free: list[tuple[int, int]], target: np.ndarray) -> bool:
     in a hole), through free tags alone (six-neighbour steps): a way across a ring, the end
     every capture rule refuses (docs/algorithm.md, "Session 64"). False for a target
     without holes."""
+    if len(free) == 0:
+        return False
     cells = _tag_set(target)
     holes = _tag_set(enclosed_cells(target))
     free_set = {(int(x), int(y)) for x, y in free}
