@@ -175,14 +175,15 @@ def test_the_middle_of_a_way_across_the_ring_may_go_with_one_searcher_inside() -
             assert np.array_equal(window, o_memory(way))  # the memory is left as it was
         return out
 
-    taker = ETParams(hole_taker="on")
+    # (``way_end``, on since session 68, lets (3, 1) go first instead: off here)
+    taker = ETParams(hole_taker="on", way_end="off")
     assert allowed(taker, []) == []
     # One searcher in the hole takes (3, 1) once (4, 1) is held: the middle may go.
     assert allowed(taker, [5]) == [(4, 1)]
     # Two would leave one of them shut in; a sighting of robot 0 itself says nothing.
     assert allowed(taker, [5, 6]) == []
     assert allowed(taker, [0]) == []
-    assert allowed(ETParams(), [5]) == []  # off by default (session 65)
+    assert allowed(ETParams(way_end="off"), [5]) == []  # off by default (session 65)
     # A sighting older than TAKER_FRESH_S is no taker: it may have come out since.
     ci, _ = taker.pack(31, gene_x0=ORIGIN, gene_y0=ORIGIN)
     ri, _, _ = allocate(1)
@@ -219,8 +220,9 @@ def test_o_seed_7_closes_its_last_way_across_the_ring_with_the_taker_rule() -> N
     # there shuts a site in, and the run stays so; with it a searcher takes the middle
     # while one is seen in the hole, and that one takes the hole's edge site.
     way = [[-1, -5], [-1, -4], [0, -3]]
-    # (Traced in session 64, before the rim wave, which grows this seed otherwise.)
-    traced = {"rim_wave_s": 0.0}
+    # (Traced in session 64, before the rim wave, which grows this seed otherwise, and
+    # before session 68's rules for a way across.)
+    traced = {"rim_wave_s": 0.0, "way_end": "off", "way_plunge": "off"}
     stuck = ETRun(RunConfig(shape="O", seed=7, max_time_s=7200, et=ETParams(**traced)))
     summary = stuck.run()
     assert not summary["formed"]

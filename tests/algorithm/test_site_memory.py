@@ -171,3 +171,39 @@ def test_a_site_on_the_holes_edge_is_open_from_the_hole_side_too() -> None:
     assert not shuts_in(3, 1, window, ORIGIN, ORIGIN, gene, ci)
     # Taking (4, 0) still walls the hole off with (3, 1) and (3, 0) free on its edge.
     assert shuts_in(4, 0, window, ORIGIN, ORIGIN, gene, ci)
+
+
+def test_a_ways_hole_end_may_be_taken_leaving_a_notch_two_deep() -> None:
+    # The ring held but for a way across it: (3, 1) on the hole's edge, (4, 1) in the
+    # middle and (5, 1) beside the outside. Each capture narrows or cuts off another,
+    # so the one-step test refuses all three. With ``way_end`` the hole's end may go: it
+    # leaves (4, 1) and (5, 1) a notch two deep, which a searcher enters from outside.
+    gene, _ = ring_gene()
+    way = [(3, 1), (4, 1), (5, 1)]
+    shape_sites = [s for r in (3, 4, 5) for s in ring(r)]
+    window = memory_of([s for s in shape_sites if s not in way])
+    plain_ci, _ = ETParams(way_end="off").pack(31, gene_x0=ORIGIN, gene_y0=ORIGIN)
+    way_ci, _ = ETParams().pack(31, gene_x0=ORIGIN, gene_y0=ORIGIN)
+    for x, y in way:
+        assert shuts_in(x, y, window, ORIGIN, ORIGIN, gene, plain_ci)
+    assert not shuts_in(3, 1, window, ORIGIN, ORIGIN, gene, way_ci)
+    assert shuts_in(4, 1, window, ORIGIN, ORIGIN, gene, way_ci)
+    assert shuts_in(5, 1, window, ORIGIN, ORIGIN, gene, way_ci)
+    # Then the notch fills from its end: (4, 1) leaves (5, 1) open to the outside.
+    window[3 - ORIGIN, 1 - ORIGIN] = 1
+    assert not shuts_in(4, 1, window, ORIGIN, ORIGIN, gene, way_ci)
+    assert shuts_in(5, 1, window, ORIGIN, ORIGIN, gene, way_ci)
+
+
+def test_only_a_site_on_a_holes_edge_may_leave_a_notch_two_deep() -> None:
+    # The same three sites as a notch three deep into a shape with no hole: its end,
+    # (3, 1), would leave (4, 1) with one free neighbour, which ``way_end`` does not
+    # allow away from a hole.
+    gene, _ = hexagon_gene()
+    notch = [(3, 1), (4, 1), (5, 1)]
+    window = memory_of(
+        [(x, y) for x in range(-5, 6) for y in range(-5, 6)
+         if hex_distance(x, y) <= RADIUS and (x, y) not in notch]
+    )
+    way_ci, _ = ETParams().pack(31, gene_x0=ORIGIN, gene_y0=ORIGIN)
+    assert shuts_in(3, 1, window, ORIGIN, ORIGIN, gene, way_ci)

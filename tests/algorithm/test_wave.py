@@ -193,10 +193,11 @@ def test_o_closes_its_ring_from_the_hole_out_where_a_way_across_it_stalled() -> 
     # O seed 9 without the rim wave ends 4 h on a way of three free sites across the ring,
     # (2, 3), (3, 4) and (4, 5): each capture would shut a free site off from the searchers.
     # With it the ring's inner rows lead, its last free sites open to the outside, and it
-    # forms (session 65).
+    # forms (session 65; session 68's rules for such a way are off here).
     def run(rim_wave_s: float) -> ETRun:
         r = ETRun(RunConfig(shape="O", seed=9, max_time_s=14400,
-                            et=ETParams(rim_wave_s=rim_wave_s, inside_bit="off")))
+                            et=ETParams(rim_wave_s=rim_wave_s, inside_bit="off",
+                                        way_end="off", way_plunge="off")))
         r.run()
         return r
 

@@ -48,6 +48,7 @@ from etswarm.algorithm.params import (
     C_HOLE_WATCH,
     C_RIM_WAVE,
     C_WAVE,
+    C_WAY_PLUNGE,
     F_PORTABLE_MATH,
     NOMINAL_MOTION,
     ETParams,
@@ -220,6 +221,7 @@ class ETController:
             self.ci[C_FIRST_PLUNGE] = 0
         else:
             self.ci[C_RIM_WAVE] = 0
+            self.ci[C_WAY_PLUNGE] = 0
         if self.ci[C_WAVE] > 0:
             hops = (
                 rim_hops(cells) if self.ci[C_RIM_WAVE] > 0

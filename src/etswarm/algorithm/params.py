@@ -82,7 +82,9 @@ C_STATUS_SIG = 65  # a status carries its target's signature (4 bits, ``messages
 C_RIM_WAVE = 66  # ticks at the shape a searcher keeps to the rim wave round a hole (0: off)
 C_INSIDE_BIT = 67  # 1: a searcher that places itself in a hole says so in its status
 C_HOLE_TAKER = 68  # 1: a hole's last free edge site may be walled in with one searcher inside
-N_CI = 69
+C_WAY_END = 69  # 1: a ring's last way may be closed at the hole's end, leaving a notch
+C_WAY_PLUNGE = 70  # 1: in a ring's first formation a searcher in a notch's mouth plunges
+N_CI = 71
 
 #: Values of ``ci[C_RIGHT_OF_WAY]``: never, always, or in the first formation alone (a
 #: thin shape's, ``thin_right_of_way``).
@@ -702,6 +704,19 @@ class ETParams:
     #: off from the outside. With the rim wave and ``inside_bit``, "on" formed `O` 180 of
     #: 220 runs against 184 (session 65), so it is off.
     hole_taker: str = "off"
+    #: For a target with holes: a capture of a site on a hole's edge is not refused for
+    #: leaving a free neighbour site with one free neighbour of its own when the two make
+    #: a notch two deep, open to the outside of the shape
+    #: (``site_memory.notch_two_deep``). A ring's last way across (edge site, middle,
+    #: outer site) is otherwise refused at all three sites. "off": refused. `O`, seeds
+    #: 0-319: 271 of 320 runs formed against 267 (none lost); with ``way_plunge`` 281.
+    way_end: str = "on"
+    #: For a target with holes: in the first formation too, a searcher long at the shape
+    #: that stands in the mouth of a notch plunges (as ``mouth_plunge`` after damage), so
+    #: that it reaches the notch's inner site. "off": only after damage. `O`, seeds
+    #: 0-319: 277 of 320 runs formed against 267; with ``way_end`` 281 (docs/algorithm.md,
+    #: "Session 68").
+    way_plunge: str = "on"
     #: In the first formation a searcher does not take a site while a neighbour site of
     #: the target nearer the seed triangle (in steps within the shape) is not known held,
     #: for its first this many seconds at the shape (``wave``): a compact shape then
@@ -765,7 +780,7 @@ class ETParams:
                 "silent_sites", "lost_beacon", "lost_yield", "right_of_way", "thin_right_of_way",
                 "site_offsets", "report_patience", "merge_remnants", "signed_foreign",
                 "mouth_plunge", "merge_parked", "parked_obstacle", "lone_kept_leave",
-                "inside_bit", "hole_taker",
+                "inside_bit", "hole_taker", "way_end", "way_plunge",
             ):
                 if value not in ("on", "off"):
                     raise EtswarmError(f"{f.name} must be 'on' or 'off', got {value!r}")
@@ -888,6 +903,8 @@ class ETParams:
         ci[C_HOLE_WATCH] = ticks(self.hole_watch_s) if watching else 0
         ci[C_INSIDE_BIT] = 1 if watching and self.inside_bit == "on" else 0
         ci[C_HOLE_TAKER] = 1 if watching and self.hole_taker == "on" else 0
+        ci[C_WAY_END] = 1 if holes_known and self.way_end == "on" else 0
+        ci[C_WAY_PLUNGE] = 1 if self.way_plunge == "on" else 0
         ci[C_TICKS_PER_S] = ticks_per_s
         # A thin shape closes no ring round a free middle: the wave only slows it.
         ci[C_WAVE] = ticks(self.wave_s) if self.wave_s > 0 and not thin else 0

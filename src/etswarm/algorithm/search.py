@@ -116,6 +116,7 @@ from etswarm.algorithm.params import (
     C_TICKS_PLUNGE,
     C_TICKS_SETTLE,
     C_TICKS_YIELD_MAX,
+    C_WAY_PLUNGE,
     F_CAPTURE_OFFSET,
     F_CLEARANCE,
     F_CLOSING,
@@ -642,14 +643,15 @@ def search_rule(  # type: ignore[no-untyped-def]
         if (
             ci[C_MOUTH_PLUNGE] == 1
             and ci[C_TICKS_PLUNGE] > 0
-            and not first_growth(i, ri)
+            and (not first_growth(i, ri) or ci[C_WAY_PLUNGE] == 1)
             and tick >= ri[i, R_PLUNGE_UNTIL]
             and at_shape >= widening_ticks(ri[i, R_GROWTH], cf)
             and in_mouth(i, tick - steer_fresh, nb, nb_dist, gene_flag, ci, held_i, ox, oy,
                          d + MOUTH_READ_MM)
         ):
             # Long at a regrowing shape, it passes between the two robots across a free
-            # site: the site lies inside the notch, so it plunges in (``mouth_plunge``).
+            # site: the site lies inside the notch, so it plunges in (``mouth_plunge``);
+            # with ``way_plunge``, in a ring's first formation too.
             ri[i, R_PLUNGE_UNTIL] = tick + ci[C_TICKS_PLUNGE]
     # Near a free site: stop-and-go, so that steering and the capture test use readings
     # taken where the robot is, not up to seconds ago.

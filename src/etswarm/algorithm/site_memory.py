@@ -50,6 +50,7 @@ from etswarm.algorithm.memory import (
     R_TAG_Y,
 )
 from etswarm.algorithm.messages import CHUNK_FIRST_BYTE, CHUNK_SITES, EPOCH_SHIFT, MSG_HELD
+from etswarm.algorithm.params import C_WAY_END
 
 #: A free site must keep this many consecutive free neighbour sites to stay reachable
 #: by a robot that keeps about d from every placed robot.
@@ -292,13 +293,43 @@ def beside_hole(sx, sy, gene_flag, ci):  # type: ignore[no-untyped-def]
 
 
 @njit
+def notch_two_deep(sx, sy, held_i, ox, oy, gene_flag, ci):  # type: ignore[no-untyped-def]
+    """Free shape site (sx, sy) has exactly one neighbour site not remembered held, a
+    shape site beside the outside of the shape (a neighbour off the shape and in no hole)
+    that keeps an opening of ``OPENING_SITES`` free neighbour sites: the two make a notch
+    two deep, which a searcher enters from the outside."""
+    n_free = 0
+    mx = 0
+    my = 0
+    for k in range(6):
+        nx = sx + DIR_X[k]
+        ny = sy + DIR_Y[k]
+        if is_held(held_i, nx, ny, ox, oy):
+            continue
+        n_free += 1
+        mx = nx
+        my = ny
+    if n_free != 1 or gene_at(gene_flag, ci, mx, my) != 1:
+        return False
+    if narrowed(mx, my, held_i, ox, oy):
+        return False
+    for k in range(6):
+        flag = gene_at(gene_flag, ci, mx + DIR_X[k], my + DIR_Y[k])
+        if flag != 1 and flag != HOLE_FLAG:
+            return True
+    return False
+
+
+@njit
 def narrows_a_neighbour(cx, cy, held_i, ox, oy, gene_flag, ci, outside):  # type: ignore[no-untyped-def]
     """Taking (cx, cy) would leave a free shape site next to it (as far as ``held_i``
     tells) without an opening of ``OPENING_SITES`` free neighbour sites (unless the site
     lies ``beside_hole``), or, when ``outside``, cut off from the outside of the shape.
+    With ``C_WAY_END``, a capture on a hole's edge may leave a ``notch_two_deep``.
     (cx, cy) must lie in the window; ``held_i`` is restored on return."""
     held_i[cx - ox, cy - oy] = 1
     shut = False
+    way_end = ci[C_WAY_END] == 1 and beside_hole(cx, cy, gene_flag, ci)
     for k in range(6):
         sx = cx + DIR_X[k]
         sy = cy + DIR_Y[k]
@@ -315,9 +346,11 @@ def narrows_a_neighbour(cx, cy, held_i, ox, oy, gene_flag, ci, outside):  # type
             continue
         if flag != 1:
             continue
-        if (narrowed(sx, sy, held_i, ox, oy) and not beside_hole(sx, sy, gene_flag, ci)) or (
-            outside and not reaches_outside(sx, sy, held_i, ox, oy, gene_flag, ci)
-        ):
+        if (
+            narrowed(sx, sy, held_i, ox, oy)
+            and not beside_hole(sx, sy, gene_flag, ci)
+            and not (way_end and notch_two_deep(sx, sy, held_i, ox, oy, gene_flag, ci))
+        ) or (outside and not reaches_outside(sx, sy, held_i, ox, oy, gene_flag, ci)):
             shut = True
             break
     held_i[cx - ox, cy - oy] = 0
