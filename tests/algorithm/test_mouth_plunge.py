@@ -111,10 +111,16 @@ def test_a_searcher_long_at_a_regrowing_shape_plunges_in_a_mouth() -> None:
     assert plunge_until(mouth_world()) == TICK + 20 * TICKS_PER_S
 
 
+def test_a_first_formation_searcher_plunges_in_a_mouth_with_way_plunge() -> None:
+    # ``way_plunge`` (the controller keeps it on for a target with holes alone)
+    assert plunge_until(mouth_world(growth=0)) == TICK + 20 * TICKS_PER_S
+
+
 @pytest.mark.parametrize(
     "world",
     [
-        pytest.param({"growth": 0}, id="first formation"),
+        pytest.param({"growth": 0, "et": ETParams(way_plunge="off")},
+                     id="first formation"),
         pytest.param({"at_shape_s": 600.0}, id="not long at the shape"),
         pytest.param({"free_held": True}, id="no mouth"),
         pytest.param({"et": ETParams(mouth_plunge="off")}, id="option off"),
