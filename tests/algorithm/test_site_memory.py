@@ -207,3 +207,22 @@ def test_only_a_site_on_a_holes_edge_may_leave_a_notch_two_deep() -> None:
     )
     way_ci, _ = ETParams().pack(31, gene_x0=ORIGIN, gene_y0=ORIGIN)
     assert shuts_in(3, 1, window, ORIGIN, ORIGIN, gene, way_ci)
+
+
+def test_a_way_with_two_sites_on_the_holes_edge_shortens_from_one_of_them() -> None:
+    # Free: (3, 1) and (3, 2) on the hole's edge, (4, 2) between them and (5, 3) beside
+    # the outside. Taking (3, 1) leaves (4, 2) free neighbours on opposite sides, (3, 2)
+    # and (5, 3); with ``way_end`` that is allowed, since (4, 2) stays on a way across
+    # (``way_corridor``), the three-site way the notch rule then closes.
+    gene, _ = ring_gene()
+    way = [(3, 1), (3, 2), (4, 2), (5, 3)]
+    shape_sites = [s for r in (3, 4, 5) for s in ring(r)]
+    window = memory_of([s for s in shape_sites if s not in way])
+    plain_ci, _ = ETParams(way_end="off").pack(31, gene_x0=ORIGIN, gene_y0=ORIGIN)
+    way_ci, _ = ETParams().pack(31, gene_x0=ORIGIN, gene_y0=ORIGIN)
+    assert all(shuts_in(x, y, window, ORIGIN, ORIGIN, gene, plain_ci) for x, y in way)
+    assert [s for s in way if not shuts_in(*s, window, ORIGIN, ORIGIN, gene, way_ci)] == [
+        (3, 1), (3, 2)
+    ]
+    window[3 - ORIGIN, 1 - ORIGIN] = 1
+    assert not shuts_in(3, 2, window, ORIGIN, ORIGIN, gene, way_ci)

@@ -705,16 +705,19 @@ class ETParams:
     #: 220 runs against 184 (session 65), so it is off.
     hole_taker: str = "off"
     #: For a target with holes: a capture of a site on a hole's edge is not refused for
-    #: leaving a free neighbour site with one free neighbour of its own when the two make
-    #: a notch two deep, open to the outside of the shape
-    #: (``site_memory.notch_two_deep``). A ring's last way across (edge site, middle,
+    #: leaving a free neighbour site too narrow to enter when that site and its one free
+    #: neighbour make a notch two deep, open to the outside of the shape
+    #: (``site_memory.notch_two_deep``), or when its two free neighbours are another
+    #: site on the hole's edge and one that is not (``site_memory.way_corridor``: a way
+    #: across the ring that stays one). A ring's last way across (edge site, middle,
     #: outer site) is otherwise refused at all three sites. "off": refused. `O`, seeds
-    #: 0-319: 271 of 320 runs formed against 267 (none lost); with ``way_plunge`` 281.
+    #: 0-319: with ``way_plunge``, 284 of 320 runs formed against 277 (with the notch
+    #: alone 281); alone (the notch) 271 against 267.
     way_end: str = "on"
     #: For a target with holes: in the first formation too, a searcher long at the shape
     #: that stands in the mouth of a notch plunges (as ``mouth_plunge`` after damage), so
     #: that it reaches the notch's inner site. "off": only after damage. `O`, seeds
-    #: 0-319: 277 of 320 runs formed against 267; with ``way_end`` 281 (docs/algorithm.md,
+    #: 0-319: 277 of 320 runs formed against 267; with ``way_end`` 284 (docs/algorithm.md,
     #: "Session 68").
     way_plunge: str = "on"
     #: In the first formation a searcher does not take a site while a neighbour site of

@@ -321,11 +321,31 @@ def notch_two_deep(sx, sy, held_i, ox, oy, gene_flag, ci):  # type: ignore[no-un
 
 
 @njit
+def way_corridor(sx, sy, held_i, ox, oy, gene_flag, ci):  # type: ignore[no-untyped-def]
+    """Free shape site (sx, sy) has exactly two neighbour sites not remembered held, both
+    shape sites: one on a hole's edge, the other not. It lies on a way across a ring
+    that stays one: taking a site on the hole's edge beside it leaves a shorter way."""
+    n_free = 0
+    n_edge = 0
+    for k in range(6):
+        nx = sx + DIR_X[k]
+        ny = sy + DIR_Y[k]
+        if is_held(held_i, nx, ny, ox, oy):
+            continue
+        if gene_at(gene_flag, ci, nx, ny) != 1:
+            return False
+        n_free += 1
+        n_edge += beside_hole(nx, ny, gene_flag, ci)
+    return n_free == 2 and n_edge == 1
+
+
+@njit
 def narrows_a_neighbour(cx, cy, held_i, ox, oy, gene_flag, ci, outside):  # type: ignore[no-untyped-def]
     """Taking (cx, cy) would leave a free shape site next to it (as far as ``held_i``
     tells) without an opening of ``OPENING_SITES`` free neighbour sites (unless the site
     lies ``beside_hole``), or, when ``outside``, cut off from the outside of the shape.
-    With ``C_WAY_END``, a capture on a hole's edge may leave a ``notch_two_deep``.
+    With ``C_WAY_END``, a capture on a hole's edge may leave a ``notch_two_deep`` or a
+    ``way_corridor``.
     (cx, cy) must lie in the window; ``held_i`` is restored on return."""
     held_i[cx - ox, cy - oy] = 1
     shut = False
@@ -349,7 +369,13 @@ def narrows_a_neighbour(cx, cy, held_i, ox, oy, gene_flag, ci, outside):  # type
         if (
             narrowed(sx, sy, held_i, ox, oy)
             and not beside_hole(sx, sy, gene_flag, ci)
-            and not (way_end and notch_two_deep(sx, sy, held_i, ox, oy, gene_flag, ci))
+            and not (
+                way_end
+                and (
+                    notch_two_deep(sx, sy, held_i, ox, oy, gene_flag, ci)
+                    or way_corridor(sx, sy, held_i, ox, oy, gene_flag, ci)
+                )
+            )
         ) or (outside and not reaches_outside(sx, sy, held_i, ox, oy, gene_flag, ci)):
             shut = True
             break
