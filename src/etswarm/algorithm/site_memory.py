@@ -292,29 +292,35 @@ def beside_hole(sx, sy, gene_flag, ci):  # type: ignore[no-untyped-def]
     return holes > 0
 
 
+@njit(inline="always")
+def free_directions(sx, sy, held_i, ox, oy):  # type: ignore[no-untyped-def]
+    """Bit k set for each lattice direction k (``DIR_X``, ``DIR_Y``) whose neighbour site
+    of (sx, sy) is not remembered held."""
+    bits = 0
+    for k in range(6):
+        if not is_held(held_i, sx + DIR_X[k], sy + DIR_Y[k], ox, oy):
+            bits |= 1 << k
+    return bits
+
+
 @njit
 def notch_two_deep(sx, sy, held_i, ox, oy, gene_flag, ci):  # type: ignore[no-untyped-def]
     """Free shape site (sx, sy) has exactly one neighbour site not remembered held, a
     shape site beside the outside of the shape (a neighbour off the shape and in no hole)
     that keeps an opening of ``OPENING_SITES`` free neighbour sites: the two make a notch
     two deep, which a searcher enters from the outside."""
-    n_free = 0
-    mx = 0
-    my = 0
-    for k in range(6):
-        nx = sx + DIR_X[k]
-        ny = sy + DIR_Y[k]
-        if is_held(held_i, nx, ny, ox, oy):
-            continue
-        n_free += 1
-        mx = nx
-        my = ny
-    if n_free != 1 or gene_at(gene_flag, ci, mx, my) != 1:
+    bits = free_directions(sx, sy, held_i, ox, oy)
+    if bits == 0 or bits & (bits - 1) != 0:
+        return False  # not exactly one free neighbour
+    k = 0
+    while not (bits >> k) & 1:
+        k += 1
+    mx = sx + DIR_X[k]
+    my = sy + DIR_Y[k]
+    if gene_at(gene_flag, ci, mx, my) != 1 or narrowed(mx, my, held_i, ox, oy):
         return False
-    if narrowed(mx, my, held_i, ox, oy):
-        return False
-    for k in range(6):
-        flag = gene_at(gene_flag, ci, mx + DIR_X[k], my + DIR_Y[k])
+    for q in range(6):
+        flag = gene_at(gene_flag, ci, mx + DIR_X[q], my + DIR_Y[q])
         if flag != 1 and flag != HOLE_FLAG:
             return True
     return False
@@ -325,13 +331,14 @@ def way_corridor(sx, sy, held_i, ox, oy, gene_flag, ci):  # type: ignore[no-unty
     """Free shape site (sx, sy) has exactly two neighbour sites not remembered held, both
     shape sites: one on a hole's edge, the other not. It lies on a way across a ring
     that stays one: taking a site on the hole's edge beside it leaves a shorter way."""
+    bits = free_directions(sx, sy, held_i, ox, oy)
     n_free = 0
     n_edge = 0
     for k in range(6):
+        if not (bits >> k) & 1:
+            continue
         nx = sx + DIR_X[k]
         ny = sy + DIR_Y[k]
-        if is_held(held_i, nx, ny, ox, oy):
-            continue
         if gene_at(gene_flag, ci, nx, ny) != 1:
             return False
         n_free += 1
