@@ -266,18 +266,30 @@ def reaches_outside(sx, sy, held_i, ox, oy, gene_flag, ci):  # type: ignore[no-u
     return flood_from(sx, sy, held_i, ox, oy, gene_flag, ci)[0]
 
 
+@njit(inline="always")
+def free_directions(sx, sy, held_i, ox, oy):  # type: ignore[no-untyped-def]
+    """Bit k set for each lattice direction k (``DIR_X``, ``DIR_Y``) whose neighbour site
+    of (sx, sy) is not remembered held."""
+    bits = 0
+    for k in range(6):
+        if not is_held(held_i, sx + DIR_X[k], sy + DIR_Y[k], ox, oy):
+            bits |= 1 << k
+    return bits
+
+
 @njit
 def narrowed(sx, sy, held_i, ox, oy):  # type: ignore[no-untyped-def]
     """Free site (sx, sy) has no ``OPENING_SITES`` consecutive neighbour sites that are not
     remembered held (twice round, so a run may wrap)."""
+    bits = free_directions(sx, sy, held_i, ox, oy)
     run = 0
     for q in range(12):
-        if is_held(held_i, sx + DIR_X[q % 6], sy + DIR_Y[q % 6], ox, oy):
-            run = 0
-        else:
+        if (bits >> (q % 6)) & 1:
             run += 1
             if run >= OPENING_SITES:
                 return False
+        else:
+            run = 0
     return True
 
 
@@ -290,17 +302,6 @@ def beside_hole(sx, sy, gene_flag, ci):  # type: ignore[no-untyped-def]
     for k in range(6):
         holes += gene_at(gene_flag, ci, sx + DIR_X[k], sy + DIR_Y[k]) == HOLE_FLAG
     return holes > 0
-
-
-@njit(inline="always")
-def free_directions(sx, sy, held_i, ox, oy):  # type: ignore[no-untyped-def]
-    """Bit k set for each lattice direction k (``DIR_X``, ``DIR_Y``) whose neighbour site
-    of (sx, sy) is not remembered held."""
-    bits = 0
-    for k in range(6):
-        if not is_held(held_i, sx + DIR_X[k], sy + DIR_Y[k], ox, oy):
-            bits |= 1 << k
-    return bits
 
 
 @njit
