@@ -137,7 +137,7 @@ def circle_home(
     cf = odometry_cf(params)
     track = []
     while (ri[0, R_ODO_PATH] - ri[0, R_LOST_PATH]) / ODO_PER_MM < path_mm:
-        command = homing_motion(0, ri, ahead, False)
+        command = homing_motion(0, ri, ahead, 0, 0, False)
         world.motor[0] = command
         sim.run_ticks(1)
         integrate(0, ri, command, cf)
@@ -245,12 +245,12 @@ def test_home_is_where_it_last_heard_the_group() -> None:
     ri[0, R_ODO_X] = 205 * ODO_PER_MM  # 200 mm on, facing away (+x)
     note_lost(0, ri)
     # far out, facing away from home: it pivots to turn round
-    assert homing_motion(0, ri, False, False) in (LEFT, RIGHT)
+    assert homing_motion(0, ri, False, 0, 0, False) in (LEFT, RIGHT)
     ri[0, R_ODO_H] = round(math.pi * ODO_PER_RAD)  # facing home
-    assert homing_motion(0, ri, False, False) == FORWARD
+    assert homing_motion(0, ri, False, 0, 0, False) == FORWARD
     ri[0, R_ODO_H] = round(0.5 * math.pi * ODO_PER_RAD)  # facing +y: home on its right
     note_home(0, ri)  # ... but now home is here, and the ring is 50 mm out
-    assert homing_motion(0, ri, False, False) in (LEFT, RIGHT)
+    assert homing_motion(0, ri, False, 0, 0, False) in (LEFT, RIGHT)
 
 
 @pytest.mark.parametrize("homing", ["on", "off"])

@@ -170,9 +170,11 @@ def spiral_path():  # type: ignore[no-untyped-def]
 
 
 @njit
-def homing_motion(i, ri, ahead, portable):  # type: ignore[no-untyped-def]
+def homing_motion(i, ri, ahead, from_x, from_y, portable):  # type: ignore[no-untyped-def]
     """Motor command of lost robot i, circling home (with ``ahead``, a point moved on from
-    home away from the odometric origin, ``AHEAD_SHARE``).
+    home away from the odometric point (``from_x``, ``from_y``), 1 / ``ODO_PER_MM`` mm:
+    the origin, where it left the repository, or where a leap's walk began,
+    ``repository_gap``; ``AHEAD_SHARE``).
 
     It steers for the clockwise tangent of the ring of radius ``ring_radius`` round home,
     turned towards home (or away) by up to 90 degrees as its odometric distance from home
@@ -186,8 +188,8 @@ def homing_motion(i, ri, ahead, portable):  # type: ignore[no-untyped-def]
     h = ri[i, R_ODO_H] / ODO_PER_RAD
     path = (ri[i, R_ODO_PATH] - ri[i, R_LOST_PATH]) / ODO_PER_MM
     if ahead:
-        hx = ri[i, R_HOME_X] / ODO_PER_MM
-        hy = ri[i, R_HOME_Y] / ODO_PER_MM
+        hx = (ri[i, R_HOME_X] - from_x) / ODO_PER_MM
+        hy = (ri[i, R_HOME_Y] - from_y) / ODO_PER_MM
         away = hypot_as(hx, hy, portable)
         if away >= AHEAD_MIN_MM:
             shift = AHEAD_SHARE * (path % spiral_path())

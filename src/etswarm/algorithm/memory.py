@@ -243,7 +243,19 @@ R_FORMER_Y = R_FORMER_X + 1
 R_ELECT_MIN = R_FORMER_Y + 1
 #: 1 while a searcher's readings place it in a hole of its target (``hole_watch``).
 R_INSIDE = R_ELECT_MIN + 1
-R_FIELDS = R_INSIDE + 1
+#: A searcher's walk along the first formation's repository (``repository_gap``): its
+#: phase, the lowest and highest queue ranks it followed and the odometric points where
+#: it heard them, the tick it last heard a placed robot, and the tick its leap began.
+R_GAP_PHASE = R_INSIDE + 1
+R_GAP_LO = R_GAP_PHASE + 1
+R_GAP_LO_X = R_GAP_LO + 1
+R_GAP_LO_Y = R_GAP_LO_X + 1
+R_GAP_TOP = R_GAP_LO_Y + 1
+R_GAP_TOP_X = R_GAP_TOP + 1
+R_GAP_TOP_Y = R_GAP_TOP_X + 1
+R_GAP_SINCE = R_GAP_TOP_Y + 1
+R_LEAP_SINCE = R_GAP_SINCE + 1
+R_FIELDS = R_LEAP_SINCE + 1
 
 #: No site (a tag field that holds none: ``R_FORMER_X``, ``localise.find_site``'s left site).
 NO_SITE = -(1 << 40)

@@ -84,7 +84,9 @@ C_INSIDE_BIT = 67  # 1: a searcher that places itself in a hole says so in its s
 C_HOLE_TAKER = 68  # 1: a hole's last free edge site may be walled in with one searcher inside
 C_WAY_END = 69  # 1: a ring's last way may be closed at the hole's end, leaving a notch
 C_WAY_PLUNGE = 70  # 1: in a ring's first formation a searcher in a notch's mouth plunges
-N_CI = 71
+C_TICKS_GAP = 71  # a searcher at the dead end of a broken queue leaps after this long (0: off)
+C_TICKS_LEAP = 72  # ... and gives the leap up after this long
+N_CI = 73
 
 #: Values of ``ci[C_RIGHT_OF_WAY]``: never, always, or in the first formation alone (a
 #: thin shape's, ``thin_right_of_way``).
@@ -206,7 +208,7 @@ NON_NEGATIVE: frozenset[str] = frozenset(
         "regrowth_capture_offset_mm", "remembered_neighbours_s", "regrowth_unpinch_mm",
         "isolated_rejoin_s", "hole_watch_s", "wave_s", "rim_wave_s", "regrowth_plunge_s",
         "first_plunge_after_s", "lost_escape_s", "offset_leave_mm", "former_site_slack_mm",
-        "from_return_s", "mirror_margin_mm", "regrowth_fold_skip_mm",
+        "from_return_s", "mirror_margin_mm", "regrowth_fold_skip_mm", "repository_gap_s",
     }
 )
 #: Parameters that may take any sign.
@@ -542,6 +544,20 @@ class ETParams:
     #: course and met the same robots, for hours (dumbbell split y=mid seed 12, session
     #: 50). Going round the sibling, it passes the gap towards its own remnant. 0: off.
     lost_escape_s: float = 120.0
+    #: First formation: a searcher that has followed the repository round a dead end (the
+    #: Queued robots' queue ranks climbed, then fell, by ``repository_gap.RANK_STEP``)
+    #: with no placed robot heard for this long (s) leaps the gap: the Queued robots it
+    #: walked round become obstacles, and it circles as a lost searcher, its spiral's
+    #: centre moving on the way the ranks climbed, until it hears the shape or the queue
+    #: beyond the gap (``repository_gap``). Searchers shove a long queue apart, and the
+    #: piece beyond a gap wider than radio range was cut off from the shape for good
+    #: (starfish seeds 229, 238). Seeds 0-319: starfish formed 305 of 320 runs against
+    #: 302 (8 gained, 5 lost), `O` 286 against 284 (docs/algorithm.md, "Session 69").
+    #: 0: off; they go round their piece of the queue.
+    repository_gap_s: float = 300.0
+    #: ... and a leap that has found nothing after this long (s) ends: the searcher
+    #: follows the repository again.
+    gap_leap_s: float = 1800.0
     #: "on": after damage, a searcher long at the shape (as for ``regrowth_plunge_s``)
     #: that reads the two robots across a free site of its target (``search.in_mouth``)
     #: plunges, as after a failed confirmation; "off": only after one. Traced on `H`
@@ -914,6 +930,8 @@ class ETParams:
         ci[C_RIM_WAVE] = ticks(self.rim_wave_s) if self.rim_wave_s > 0 else 0
         ci[C_TICKS_PLUNGE] = ticks(self.regrowth_plunge_s) if self.regrowth_plunge_s > 0 else 0
         ci[C_TICKS_LOST_ESCAPE] = ticks(self.lost_escape_s) if self.lost_escape_s > 0 else 0
+        ci[C_TICKS_GAP] = ticks(self.repository_gap_s) if self.repository_gap_s > 0 else 0
+        ci[C_TICKS_LEAP] = ticks(self.gap_leap_s)
         first_plunge = self.first_plunge_after_s
         ci[C_FIRST_PLUNGE] = ticks(first_plunge) if first_plunge > 0 else 0
         cf = np.zeros(N_CF, dtype=np.float64)

@@ -51,6 +51,8 @@ from etswarm.algorithm.memory import (
     R_CREEP_UNTIL,
     R_ESCAPE_UNTIL,
     R_FROM_ID,
+    R_GAP_LO_X,
+    R_GAP_LO_Y,
     R_GROWTH,
     R_HAS_TAG,
     R_HOVER_SINCE,
@@ -145,6 +147,7 @@ from etswarm.algorithm.params import (
 from etswarm.algorithm.parked import parked
 from etswarm.algorithm.pinch import too_far_off, would_pinch
 from etswarm.algorithm.pocket import POCKET_AFTER_TICKS, pocket_site
+from etswarm.algorithm.repository_gap import leaping, left_behind, note_walk, start_walk
 from etswarm.algorithm.site_memory import (
     forget_left_site,
     is_held,
@@ -215,6 +218,7 @@ def begin_search(i, tick, ri):  # type: ignore[no-untyped-def]
     ri[i, R_TOWARD_SINCE] = tick
     ri[i, R_FROM_ID] = -1
     reset_odometry(i, ri)
+    start_walk(i, tick, ri)
     ri[i, R_REF_MOVED] = 0
     ri[i, R_PINCH_REFUSED] = 0
     ri[i, R_PLUNGE_UNTIL] = 0
@@ -392,6 +396,8 @@ def search_rule(  # type: ignore[no-untyped-def]
     beacon_slot = -1
     foreign_est = FAR
     foreign_slot = -1
+    behind_est = FAR  # leaping: the Queued robots of the piece it leaps from
+    leap = leaping(i, ri)
     look_for_beacon = ci[C_LOST_BEACON] == 1
     avoid_foreign = ci[C_AVOID_FOREIGN] == 1
     parked_obstacle = ci[C_PARKED_OBSTACLE] == 1
@@ -428,6 +434,8 @@ def search_rule(  # type: ignore[no-untyped-def]
             if est < foreign_est:  # of a remnant that grows nothing, or a sibling's: an obstacle
                 foreign_est = est
                 foreign_slot = m
+        elif leap and left_behind(i, m, ri, nb):
+            behind_est = min(behind_est, est)
         elif est < queued_est:
             queued_est = est
             queued_slot = m
@@ -437,7 +445,7 @@ def search_rule(  # type: ignore[no-untyped-def]
     if placed_slot >= 0:
         reading = nb_dist[i, placed_slot]
         nearest = placed_est
-        obstacle = min(queued_est, nearest_searcher, foreign_est)
+        obstacle = min(queued_est, nearest_searcher, foreign_est, behind_est)
         follow_reference(i, ri, nb, placed_slot, moving, ci[C_TICKS_FROM_RETURN])
         track_trend(i, ri, nb, nb_dist, placed_slot, R_REF_ID)
         ri[i, R_ON_SHAPE] = 1
@@ -452,7 +460,7 @@ def search_rule(  # type: ignore[no-untyped-def]
             ri[i, R_FROM_ID] = -1  # it turned round
         reading = nb_dist[i, queued_slot]
         nearest = queued_est
-        obstacle = min(nearest_searcher, foreign_est)
+        obstacle = min(nearest_searcher, foreign_est, behind_est)
         follow_reference(i, ri, nb, queued_slot, moving, ci[C_TICKS_FROM_RETURN])
         track_trend(i, ri, nb, nb_dist, queued_slot, R_REF_ID)
     else:
@@ -460,7 +468,7 @@ def search_rule(  # type: ignore[no-untyped-def]
         # follow a searcher that hears the group (it leads back into earshot).
         lost = True
         nearest = FAR
-        obstacle = min(nearest_searcher, foreign_est)
+        obstacle = min(nearest_searcher, foreign_est, behind_est)
         if beacon_slot >= 0:
             beacon = True
             reading = nb_dist[i, beacon_slot]
@@ -479,6 +487,7 @@ def search_rule(  # type: ignore[no-untyped-def]
     elif ri[i, R_LOST_SINCE] == 0:
         ri[i, R_LOST_SINCE] = tick + 1
         note_lost(i, ri)
+    note_walk(i, tick, placed_slot, queued_slot, ri, nb, ci)
 
     # A searcher that has been at the shape for long widens its tolerances: it may be
     # squeezed where the lattice is distorted and never stand within the tight window.
@@ -708,7 +717,14 @@ def search_rule(  # type: ignore[no-untyped-def]
                 and first_growth(i, ri)
                 and ri[i, R_SHAPE_SINCE] == 0
             )
-            motor[i] = homing_motion(i, ri, ahead, cf[F_PORTABLE_MATH] > 0.0)
+            from_x = 0
+            from_y = 0
+            if leap:
+                # at a dead end of the repository: on the way the queue ranks climbed
+                ahead = True
+                from_x = ri[i, R_GAP_LO_X]
+                from_y = ri[i, R_GAP_LO_Y]
+            motor[i] = homing_motion(i, ri, ahead, from_x, from_y, cf[F_PORTABLE_MATH] > 0.0)
         else:
             motor[i] = lost_motion(tick, ri[i, R_LOST_SINCE] - 1)
     elif tick - ri[i, R_TOWARD_SINCE] > CIRCLING_TICKS and ri[i, R_REF_TREND] < 0:
