@@ -25,7 +25,7 @@ from etswarm.algorithm.run import ETRun, RunConfig
 from etswarm.algorithm.states import State
 from etswarm.measures.formation import fit_residuals_mm
 
-from .traced import SESSION_57_SEARCH
+from .traced import SESSION_57_SEARCH, SESSION_68_QUEUE
 
 #: A robot this far (mm) from its site on the rigid fit of its remnant stands on another.
 OFF_SITE_MM = 30.0
@@ -62,7 +62,7 @@ def test_the_remnant_reforms_only_without_the_mirror_capture(seed: int, option: 
 
 
 def test_the_remnant_reforms_only_when_the_pair_met_first_decides_the_side() -> None:
-    formed, worst = remnant_of_28(77, {})
+    formed, worst = remnant_of_28(77, SESSION_68_QUEUE)
     assert formed and worst < OFF_SITE_MM
-    formed, worst = remnant_of_28(77, {}, came_order="off")
+    formed, worst = remnant_of_28(77, SESSION_68_QUEUE, came_order="off")
     assert not formed and worst > 2 * OFF_SITE_MM

@@ -17,7 +17,7 @@ from etswarm.measures.formation import duplicate_tags, min_pair_distance
 from etswarm.shapes.lattice import hole_edge_cells, neighbour_counts
 
 from .test_site_memory import ORIGIN, SIZE, hexagon_gene, memory_of, ring
-from .traced import NATIVE_MATHS, SESSION_47_FORMATION
+from .traced import NATIVE_MATHS, SESSION_47_FORMATION, SESSION_68_QUEUE
 
 SEEDS = np.array([[0, 0], [1, 0], [0, 1]])
 
@@ -197,7 +197,8 @@ def test_o_closes_its_ring_from_the_hole_out_where_a_way_across_it_stalled() -> 
     def run(rim_wave_s: float) -> ETRun:
         r = ETRun(RunConfig(shape="O", seed=9, max_time_s=14400,
                             et=ETParams(rim_wave_s=rim_wave_s, inside_bit="off",
-                                        way_end="off", way_plunge="off")))
+                                        way_end="off", way_plunge="off",
+                                        **SESSION_68_QUEUE)))
         r.run()
         return r
 

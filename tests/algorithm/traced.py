@@ -95,6 +95,10 @@ SESSION_33_PLACEMENT = {"placement_turns": "off", **SESSION_49_REGROWTH}
 #: regrowths traced before then place and branch as described with this.
 SESSION_31_PLACEMENT = {"placement_off_shape": "any", **SESSION_33_PLACEMENT}
 
+#: Until session 69 a first-formation searcher went round its piece of a broken queue for
+#: good; runs traced before then whose queue broke run as described with this.
+SESSION_68_QUEUE = {"repository_gap_s": 0.0}
+
 #: Until session 53 every run computed its sines, cosines, arctangents, logarithms and
 #: normal draws with the platform's maths library (``portable_math`` off). Seeds traced
 #: before then run as described with this, on x86-64 machines whose glibc picks its FMA
