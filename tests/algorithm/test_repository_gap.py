@@ -26,7 +26,7 @@ from etswarm.algorithm.memory import (
     R_ODO_Y,
     allocate,
 )
-from etswarm.algorithm.params import ETParams
+from etswarm.algorithm.params import C_TICKS_GAP, ETParams
 from etswarm.algorithm.repository_gap import (
     LEAP_AHEAD_MM,
     PHASE_CLIMB,
@@ -216,3 +216,12 @@ def test_an_unbroken_queue_never_leaps() -> None:
         ends.append((run.world.pos.copy(), summary["formation_time_s"]))
     assert np.array_equal(ends[0][0], ends[1][0])
     assert ends[0][1] == ends[1][1]
+
+
+def test_only_a_queue_has_a_line_to_leap_along() -> None:
+    """In a packed cluster the ranks climb and fall all round it: the rule is off there."""
+    ticks = {}
+    for layout in ("queue", "cluster"):
+        run = ETRun(RunConfig(shape="T", layout=layout))
+        ticks[layout] = int(run.controller.ci[C_TICKS_GAP])
+    assert ticks == {"queue": 300 * TICKS_PER_S, "cluster": 0}

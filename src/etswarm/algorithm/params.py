@@ -553,7 +553,8 @@ class ETParams:
     #: piece beyond a gap wider than radio range was cut off from the shape for good
     #: (starfish seeds 229, 238). Seeds 0-319: starfish formed 305 of 320 runs against
     #: 302 (8 gained, 5 lost), `O` 286 against 284 (docs/algorithm.md, "Session 69").
-    #: 0: off; they go round their piece of the queue.
+    #: Queue layout only (``RunConfig.layout``): the ranks of a packed cluster climb and
+    #: fall all round it. 0: off; they go round their piece of the queue.
     repository_gap_s: float = 300.0
     #: ... and a leap that has found nothing after this long (s) ends: the searcher
     #: follows the repository again.

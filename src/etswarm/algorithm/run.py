@@ -36,7 +36,7 @@ from etswarm.algorithm.memory import (
     SLOT_TX,
     SLOT_TY,
 )
-from etswarm.algorithm.params import ETParams
+from etswarm.algorithm.params import C_TICKS_GAP, ETParams
 from etswarm.algorithm.placement import RemnantView, choose_placement, holds_a_pair
 from etswarm.algorithm.regeneration import turns_coded
 from etswarm.algorithm.silent import enclosed_tags, silent_tags
@@ -158,6 +158,10 @@ class ETRun:
             nominal_motion=(sp.speed_mm_s, sp.turn_rate_deg_s, sp.leg_angle_deg, sp.body_radius_mm),
             portable_math=sp.portable_math,
         )
+        if config.layout != "queue":
+            # Robots programmed for a packed repository: no queue's line to leap along, and
+            # the ranks of a cluster climb and fall all round it (``repository_gap``).
+            self.controller.ci[C_TICKS_GAP] = 0
         self.controller.seed(self.layout)
         self.sim = Simulator(self.world, self.controller, self.sim_params, config.seed)
         self.damage_rng = stream(config.seed, "damage")
