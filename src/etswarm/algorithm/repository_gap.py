@@ -19,6 +19,8 @@ line from where the ranks were lowest to where they were highest (the queue's li
 and circles it on a widening spiral whose centre moves on along that line. The leap ends
 when it hears a placed robot or a Queued robot of higher rank (the piece of the queue
 beyond the gap, where it walks on and may leap again), or after ``C_TICKS_LEAP`` ticks.
+Only robots programmed for the queue layout do this (``ETRun`` zeroes ``C_TICKS_GAP`` for a
+packed cluster, whose ranks climb and fall all round it).
 
 Fields (``memory``): ``R_GAP_PHASE`` (``PHASE_LOW``, ``PHASE_CLIMB``, ``PHASE_LEAP``),
 ``R_GAP_LO`` / ``R_GAP_TOP`` the lowest and highest rank of the walk and
