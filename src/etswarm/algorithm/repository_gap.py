@@ -120,9 +120,7 @@ def note_walk(i, tick, placed_slot, queued_slot, ri, nb, ci):  # type: ignore[no
     rank = nb[i, queued_slot, NB_QRANK]
     if phase == PHASE_LOW:
         if rank < ri[i, R_GAP_LO]:
-            ri[i, R_GAP_LO] = rank
-            ri[i, R_GAP_LO_X] = ri[i, R_ODO_X]
-            ri[i, R_GAP_LO_Y] = ri[i, R_ODO_Y]
+            note_low(i, ri, rank)
         elif rank >= ri[i, R_GAP_LO] + RANK_STEP:
             ri[i, R_GAP_PHASE] = PHASE_CLIMB
             ri[i, R_GAP_TOP] = -1
@@ -137,11 +135,17 @@ def note_walk(i, tick, placed_slot, queued_slot, ri, nb, ci):  # type: ignore[no
         if tick - ri[i, R_GAP_SINCE] >= ci[C_TICKS_GAP]:
             begin_leap(i, tick, ri)
         else:
-            # Too soon to tell a dead end from a walk round a cluster: start again.
+            # Too soon after the shape (a searcher turned back in mid-queue): a new climb.
             ri[i, R_GAP_PHASE] = PHASE_LOW
-            ri[i, R_GAP_LO] = rank
-            ri[i, R_GAP_LO_X] = ri[i, R_ODO_X]
-            ri[i, R_GAP_LO_Y] = ri[i, R_ODO_Y]
+            note_low(i, ri, rank)
+
+
+@njit(inline="always")
+def note_low(i, ri, rank):  # type: ignore[no-untyped-def]
+    """Robot i's walk is lowest here: ``rank``, at its odometric position."""
+    ri[i, R_GAP_LO] = rank
+    ri[i, R_GAP_LO_X] = ri[i, R_ODO_X]
+    ri[i, R_GAP_LO_Y] = ri[i, R_ODO_Y]
 
 
 @njit
