@@ -3,6 +3,10 @@ move their seeds off the situation they were written for."""
 
 from etswarm.sim.params import SimParams
 
+#: Until session 70 every plunge edge-followed the placed robots 35 mm away, a body and
+#: 2 mm; regrowths traced before then plunge as described with this.
+SESSION_69_REGROWTH = {"regrowth_plunge_aim_mm": 35.0}
+
 #: Until session 62 a status carried no bits of its sender's target, and a sibling
 #: remnant's robot was foreign to a searcher only by its tag or its held-sites message;
 #: regrowths traced before then run as described with this.
@@ -13,7 +17,7 @@ from etswarm.sim.params import SimParams
 #: consistency check, even one the lattice puts out of radio range of the candidate site
 #: whose reading fits the pair's other site no better; regrowths traced before then run
 #: as described with this (first formations are unchanged).
-SESSION_65_REGROWTH = {"regrowth_fold_skip_mm": 0.0}
+SESSION_65_REGROWTH = {"regrowth_fold_skip_mm": 0.0, **SESSION_69_REGROWTH}
 
 SESSION_64_FORMATION = {"rim_wave_s": 0.0, "inside_bit": "off", **SESSION_65_REGROWTH}
 

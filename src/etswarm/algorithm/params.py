@@ -129,7 +129,8 @@ F_PORTABLE_MATH = 30  # 1.0: odometry and homing use ``sim.fpmath`` (``SimParams
 F_FORMER_SLACK = 31  # a searcher near its former site: the slack (mm) on its odometric reach
 F_MIRROR_MARGIN = 32  # mm: a third robot rules a mirror out only fitting the site this much better
 F_REGROW_FOLD_SKIP = 33  # mm: after damage a robot this far from a site, off its mirror, is mute
-N_CF = 34
+F_REGROW_PLUNGE_AIM = 34  # mm: after damage a plunging searcher keeps this near placed robots
+N_CF = 35
 
 #: The DESIGN section 2 robot: 7 mm/s, 13 deg/s, legs at 125.5 deg, radius 16.5 mm.
 NOMINAL_MOTION = (7.0, 13.0, 125.5, 16.5)
@@ -358,13 +359,24 @@ class ETParams:
     #: shorter median formation times on thin shapes. 0: never nearer.
     dive_mm: float = 3.0
     #: After damage, a searcher that has been ``regrowth_widen_s`` at the shape and stopped
-    #: on a site it could not confirm edge-follows at ``search.PLUNGE_AIM_MM`` (35 mm)
+    #: on a site it could not confirm edge-follows at ``regrowth_plunge_aim_mm``
     #: instead of d - ``regrowth_dive_mm`` for this long: a notch's mouth pinched to
     #: 71 mm kept a searcher at 37 mm from every robot 18 mm outside its last site for
     #: 1.5 h (starfish split y=mid seed 1). Over the 18 damage cases, seeds 0-39: 630 of
     #: 704 runs re-formed against 626 with 0 (never). 0: no plunge, after damage or in
     #: the first formation.
     regrowth_plunge_s: float = 20.0
+    #: ... at this distance (mm) from the placed robots, under its 33 mm body, so that it
+    #: presses on them: where a searcher pressing past has shoved a robot into a notch's
+    #: mouth, under a body's width from the robot across it, the plunge's push parts them
+    #: a little each time. Traced on `L` `kill random=0.1` seed 109 (session 70): robots 8
+    #: and 13 stood 63 mm apart across the free (0, -3); searcher 28 plunged into the
+    #: mouth 20 times at 35 mm, which parted them by 4.5 mm in 2.8 h, and took the site
+    #: 5.1 h after the damage; at 31 mm the remnant re-forms 41 min after it. The issue-5
+    #: suite (seeds 0-39 and 100-119) re-formed 1059 of 1074 runs against 1050 (13
+    #: gained, 4 lost). First formations plunge at ``search.PLUNGE_AIM_MM`` (35 mm: a body
+    #: and 2 mm), as every plunge did before session 70.
+    regrowth_plunge_aim_mm: float = 31.0
     #: In the first formation a searcher plunges too (for ``regrowth_plunge_s``) once it
     #: has been this long at the shape (twice ``widen_s``: its dive is complete). Starfish
     #: formed 132 of 140 runs (seeds 0-79, 200-259) against 127; the regeneration suite
@@ -948,6 +960,7 @@ class ETParams:
         cf[F_CONSIST_TOL] = self.consistency_tol_mm
         cf[F_MIRROR_MARGIN] = self.mirror_margin_mm
         cf[F_REGROW_FOLD_SKIP] = self.regrowth_fold_skip_mm
+        cf[F_REGROW_PLUNGE_AIM] = self.regrowth_plunge_aim_mm
         cf[F_CONSIST_WIDEN] = self.consistency_widen_max
         cf[F_SETTLE_SCALE] = self.settle_tol_scale
         cf[F_YIELD_DIST] = self.yield_distance_mm

@@ -128,6 +128,7 @@ from etswarm.algorithm.params import (
     F_PINCH_PATIENCE,
     F_PORTABLE_MATH,
     F_REGROW_CAPTURE_OFFSET,
+    F_REGROW_PLUNGE_AIM,
     F_REGROW_TWO_WIDEN_TICKS,
     F_REGROW_WIDEN_TICKS,
     F_SETTLE_SCALE,
@@ -183,8 +184,9 @@ STRIDE_BAND_MM = 4.0
 #: diving searchers shoved placed robots apart: 2 of 260 first formations (starfish)
 #: and 2 of 6 bigdisc runs started an election with no damage done; with 1 mm, none.
 CLEARANCE_BELOW_AIM_MM = 1.0
-#: A plunging searcher (``R_PLUNGE_UNTIL``, ``regrowth_plunge_s``) edge-follows placed
-#: robots at this distance (mm): a 33 mm body and 2 mm.
+#: A plunging searcher (``R_PLUNGE_UNTIL``, ``regrowth_plunge_s``) in the first formation
+#: edge-follows placed robots at this distance (mm): a 33 mm body and 2 mm (after damage:
+#: ``regrowth_plunge_aim_mm``).
 PLUNGE_AIM_MM = 35.0
 #: ``mouth_plunge``: the two robots across a free site each read within d + this (mm).
 MOUTH_READ_MM = 8.0
@@ -675,8 +677,10 @@ def search_rule(  # type: ignore[no-untyped-def]
     # the clearance.
     dive = dive_depth(at_shape, ri[i, R_GROWTH], cf)
     if tick < ri[i, R_PLUNGE_UNTIL]:
-        # plunging (a failed confirmation after damage): it keeps PLUNGE_AIM_MM
-        dive = max(dive, d + cf[F_FOLLOW_OFFSET] - PLUNGE_AIM_MM)
+        # plunging (a failed confirmation, or a notch's mouth): in the first formation
+        # it keeps PLUNGE_AIM_MM; after damage it presses on the robots it passes
+        plunge_aim = PLUNGE_AIM_MM if first_growth(i, ri) else cf[F_REGROW_PLUNGE_AIM]
+        dive = max(dive, d + cf[F_FOLLOW_OFFSET] - plunge_aim)
     aim = d + cf[F_FOLLOW_OFFSET] - dive
     # Kilobot orbit (both pivots also move the body forward): pivot away from the group
     # when the last reading of the reference is nearer than the aim, towards it otherwise.
