@@ -44,13 +44,15 @@ LONG_AT_SHAPE_TICKS = 3 * 1200 * TICKS_PER_S
 
 def searcher(growth: int, reading_mm: float, *, settling: bool = False,
              plunge_s: float = 20.0, first_after_s: float = 800.0,
-             at_shape_s: float = 3 * 1200) -> tuple:
+             at_shape_s: float = 3 * 1200, plunge_aim_mm: float = PLUNGE_AIM_MM) -> tuple:
     """Searcher 5, ``at_shape_s`` at the shape, hearing one Stable robot on tag (0, 0) at
-    ``reading_mm``; ``growth`` 0 is the first formation, 1 a regenerated target. With
+    ``reading_mm``; ``growth`` 0 is the first formation, 1 a regenerated target, whose
+    plunges keep ``plunge_aim_mm`` (35 mm, as every plunge before session 70). With
     ``settling`` it has stood on site (1, 0) for its settle time, where it cannot confirm
     the site (one robot locates nothing). Returns what ``search_rule`` needs."""
     gene = np.ones((5, 5), dtype=np.int64)
-    params = ETParams(regrowth_plunge_s=plunge_s, first_plunge_after_s=first_after_s)
+    params = ETParams(regrowth_plunge_s=plunge_s, first_plunge_after_s=first_after_s,
+                      regrowth_plunge_aim_mm=plunge_aim_mm)
     ci, cf = params.pack(TICKS_PER_S, gene_x0=-2, gene_y0=-2)
     ri, nb, nb_dist = allocate(30)
     begin_search(SEARCHER, TICK - LONG_AT_SHAPE_TICKS, ri)
@@ -125,10 +127,16 @@ def test_a_plunging_searcher_keeps_nearer_to_the_group() -> None:
     world = searcher(growth=1, reading_mm=reading)
     world[3][SEARCHER, R_PLUNGE_UNTIL] = TICK + 1
     assert step(*world) == RIGHT
-    # Nearer than the plunging aim it still turns away.
+    # Nearer than the plunging aim it still turns away ...
     world = searcher(growth=1, reading_mm=PLUNGE_AIM_MM - 1.5)
     world[3][SEARCHER, R_PLUNGE_UNTIL] = TICK + 1
     assert step(*world) == LEFT
+    # ... but not when its plunges after damage aim under its body
+    # (``regrowth_plunge_aim_mm``, 31 mm by default): touching the robot, it presses on.
+    world = searcher(growth=1, reading_mm=PLUNGE_AIM_MM - 1.5,
+                     plunge_aim_mm=ETParams().regrowth_plunge_aim_mm)
+    world[3][SEARCHER, R_PLUNGE_UNTIL] = TICK + 1
+    assert step(*world) == RIGHT
 
 
 def regrowth(plunge_s: float) -> dict:
