@@ -144,7 +144,8 @@ def sends_tag(i, tick, ri):  # type: ignore[no-untyped-def]
     return ri[i, R_HAS_TAG] == 1 and tick - ri[i, R_WALK_SEEN] < RELAY_TICKS
 
 
-@njit
+# allocates: keeps numba's reference counting (etswarm.sim.borrow)
+@njit(_nrt=True)
 def flood_outside(seen):  # type: ignore[no-untyped-def]
     """Cells reachable from the grid's border without crossing a collected tag.
 
@@ -180,7 +181,8 @@ def flood_outside(seen):  # type: ignore[no-untyped-def]
     return outside
 
 
-@njit
+# takes flood_outside's array back: keeps reference counting (etswarm.sim.borrow)
+@njit(_nrt=True)
 def walk_count(seen, gene_flag):  # type: ignore[no-untyped-def]
     """Census count from the collected tags: the 1-cells of the closed area they bound.
 
@@ -197,7 +199,8 @@ def walk_count(seen, gene_flag):  # type: ignore[no-untyped-def]
     return count
 
 
-@njit
+# takes flood_outside's array back: keeps reference counting (etswarm.sim.borrow)
+@njit(_nrt=True)
 def opens_outside(seen, gx, gy, held):  # type: ignore[no-untyped-def]
     """A free neighbour site of grid cell (gx, gy) (bit k of ``held`` clear: no robot in
     lattice direction k) is outside the ring of ``seen`` tags: a walk that left from there

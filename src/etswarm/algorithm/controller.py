@@ -134,7 +134,6 @@ from etswarm.algorithm.release import clear_ticks, queued_rule
 from etswarm.algorithm.search import search_rule
 from etswarm.algorithm.silent import encode_silent, ingest_silent, note_silent, sends_silent
 from etswarm.algorithm.site_memory import encode_held, gossip_due, merge_held
-from etswarm.sim.borrow import borrowed
 from etswarm.sim.prefetch import prefetch
 
 #: The table rows of the busy robot this many places ahead are asked for (``et_part``).
@@ -518,7 +517,8 @@ def encode_placed(i, tick, ri, nb, ci, held, slot_info, out_on, out_type, out_da
         )
 
 
-@njit
+# allocates: keeps numba's reference counting (etswarm.sim.borrow)
+@njit(_nrt=True)
 def busy_robots(lo, hi, tick, alive, in_count, idle, motor):  # type: ignore[no-untyped-def]
     """The robots of ``lo .. hi - 1`` with something to do this tick, in index order: alive,
     and awake (``idle`` <= ``tick``), with messages to file (``in_count`` > 0) or with
@@ -536,7 +536,8 @@ def busy_robots(lo, hi, tick, alive, in_count, idle, motor):  # type: ignore[no-
     return busy, n
 
 
-@njit(cache=True)
+# takes busy_robots' array back: keeps reference counting (etswarm.sim.borrow)
+@njit(cache=True, _nrt=True)
 def et_part(  # type: ignore[no-untyped-def]
     lo,
     hi,
@@ -563,18 +564,35 @@ def et_part(  # type: ignore[no-untyped-def]
     and only ever to the same value, read after the threads meet. So parts may run at once
     on disjoint ranges, in any order, and give what one pass over all robots gives.
     """
-    # the arrays without reference counting (see etswarm.sim.borrow): this loop and the
-    # functions it calls per robot and message would otherwise count every array they
-    # pass on, atomically
-    stop, ri, nb, nb_dist, gene_flag, gene_nn, slot_info, ci, cf, walk_seen, held, idle = (
-        borrowed(mem)
-    )
-    alive, in_count, in_type, in_data, in_dist = borrowed(
-        (alive, in_count, in_type, in_data, in_dist)
-    )
-    motor, led, out_on, out_type, out_data = borrowed((motor, led, out_on, out_type, out_data))
-    every = ci[C_EVAL_EVERY]
+    idle = mem[-1]  # ticks until which each robot sleeps (see et_controller)
     busy, n_busy = busy_robots(lo, hi, tick, alive, in_count, idle, motor)
+    busy_part(busy, n_busy, tick, alive, in_count, in_type, in_data, in_dist, motor, led,
+              out_on, out_type, out_data, mem)
+
+
+@njit(_nrt=False)
+def busy_part(  # type: ignore[no-untyped-def]
+    busy,
+    n_busy,
+    tick,
+    alive,
+    in_count,
+    in_type,
+    in_data,
+    in_dist,
+    motor,
+    led,
+    out_on,
+    out_type,
+    out_data,
+    mem,
+):
+    """:func:`et_part`'s work for the robots ``busy[:n_busy]`` (``busy`` (n,) int64 IDs).
+    Compiled without numba's reference counting (``_nrt=False``, which the functions it
+    calls inherit): it allocates nothing, and every array it passes on is held by its
+    caller, so the counting would be atomic updates of counters for nothing."""
+    stop, ri, nb, nb_dist, gene_flag, gene_nn, slot_info, ci, cf, walk_seen, held, idle = mem
+    every = ci[C_EVAL_EVERY]
     for b in range(n_busy):
         i = busy[b]
         # its IDs and epochs (filing reads both) arrive while the robots before it work

@@ -107,7 +107,8 @@ def finishes(scratch, ox, oy, gene_flag, ci, cx, cy):  # type: ignore[no-untyped
         scratch[best_x, best_y] = 1
 
 
-@njit
+# allocates: keeps numba's reference counting (etswarm.sim.borrow)
+@njit(_nrt=True)
 def strands_a_site(cx, cy, held_i, ox, oy, gene_flag, ci):  # type: ignore[no-untyped-def]
     """Taking site (cx, cy) turns the sites round it from ones the greedy playout
     finishes, as the memory ``held_i`` tells, into ones it cannot finish. ``held_i`` is

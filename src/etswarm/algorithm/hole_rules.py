@@ -53,7 +53,8 @@ def encloses_a_site(i, cx, cy, nb, gene_flag, ci):  # type: ignore[no-untyped-de
     return False
 
 
-@njit
+# allocates: keeps numba's reference counting (etswarm.sim.borrow)
+@njit(_nrt=True)
 def open_from(i, cx, cy, sx, sy, center_taken, nb, gene_flag, ci):  # type: ignore[no-untyped-def]
     """Free shape site (cx + sx, cy + sy) reaches, through free shape sites, a site outside
     the shape or the edge of what robot i knows (``HOLE_RADIUS`` lattice steps from

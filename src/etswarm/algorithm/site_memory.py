@@ -211,7 +211,8 @@ def remember_heard(i, tick, ri, nb, held, ox, oy):  # type: ignore[no-untyped-de
             mark_row(held_i, i, m, ri[i, R_EPOCH], nb, ox, oy)
 
 
-@njit
+# allocates: keeps numba's reference counting (etswarm.sim.borrow)
+@njit(_nrt=True)
 def flood_from(sx, sy, held_i, ox, oy, gene_flag, ci):  # type: ignore[no-untyped-def]
     """Breadth-first from site (sx, sy) over the sites not remembered held that are on the
     shape or in one of its holes (``HOLE_FLAG``): (exits, free_sites). ``exits``: the flood

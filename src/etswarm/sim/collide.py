@@ -56,7 +56,8 @@ from etswarm.sim.neighbours import (
 )
 
 
-@njit(cache=True)
+# allocates: keeps numba's reference counting (etswarm.sim.borrow)
+@njit(cache=True, _nrt=True)
 def collide_phase(cfg, grid, pos, present, motor, dirty, dirty_flag, n_dirty, spare, counters):
     """Resolve overlaps starting from the work list ``dirty[:n_dirty]`` (grid slots).
 
@@ -68,6 +69,21 @@ def collide_phase(cfg, grid, pos, present, motor, dirty, dirty_flag, n_dirty, sp
     then the robots still to examine stay listed in ``dirty`` (and flagged) and their
     number is returned (also kept in ``grid.state[2]``) to start the next tick's list.
     """
+    # slots near the robot being examined and their squared distances (mm^2); slots are
+    # unsigned here and below so that indexing needs no negative-index wraparound
+    n_slots = dirty_flag.shape[0]
+    near = np.empty(n_slots, dtype=np.uint32)
+    near_d2 = np.empty(n_slots)
+    return resolve_overlaps(cfg, grid, pos, present, motor, dirty, dirty_flag, n_dirty, spare,
+                            counters, near, near_d2)
+
+
+@njit(cache=True, _nrt=False)
+def resolve_overlaps(cfg, grid, pos, present, motor, dirty, dirty_flag, n_dirty, spare,
+                     counters, near, near_d2):
+    """:func:`collide_phase`'s work, in the scratch rows ``near`` (N,) uint32 and
+    ``near_d2`` (N,) float64. Compiled without numba's reference counting: it allocates
+    nothing and its arrays are held by its caller."""
     r = cfg.radius
     still_share = cfg.still_share
     contact = 2.0 * r
@@ -84,10 +100,6 @@ def collide_phase(cfg, grid, pos, present, motor, dirty, dirty_flag, n_dirty, sp
     contact2 = contact * contact
     share_k = 0.5 / (2.0 * contact + margin)
     n_slots = dirty_flag.shape[0]
-    # slots near the robot being examined and their squared distances (mm^2); slots are
-    # unsigned here and below so that indexing needs no negative-index wraparound
-    near = np.empty(n_slots, dtype=np.uint32)
-    near_d2 = np.empty(n_slots)
     cur = dirty
     nxt_list = spare
     swapped = False

@@ -301,7 +301,8 @@ def normal(rng):  # type: ignore[no-untyped-def]
     return _normal_beyond(rng, i, x)
 
 
-@njit(cache=True)
+# allocates: keeps numba's reference counting (etswarm.sim.borrow)
+@njit(cache=True, _nrt=True)
 def normal_array(rng, n):  # type: ignore[no-untyped-def]
     """``n`` standard normal draws from ``rng`` by :func:`normal` ((n,) float64)."""
     out = np.empty(n)
@@ -310,7 +311,8 @@ def normal_array(rng, n):  # type: ignore[no-untyped-def]
     return out
 
 
-@njit(cache=True)
+# allocates: keeps numba's reference counting (etswarm.sim.borrow)
+@njit(cache=True, _nrt=True)
 def sin_cos_array(angles):  # type: ignore[no-untyped-def]
     """``(sin, cos)`` of every angle of ``angles`` (any shape, rad), as two arrays of the
     same shape."""
@@ -322,7 +324,8 @@ def sin_cos_array(angles):  # type: ignore[no-untyped-def]
     return s.reshape(angles.shape), c.reshape(angles.shape)
 
 
-@njit(cache=True)
+# allocates: keeps numba's reference counting (etswarm.sim.borrow)
+@njit(cache=True, _nrt=True)
 def atan2_array(y, x):  # type: ignore[no-untyped-def]
     """:func:`atan2` of every pair of ``y`` and ``x`` (1-D float64 arrays of one length)."""
     out = np.empty(y.size)

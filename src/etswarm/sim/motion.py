@@ -50,7 +50,7 @@ def clamp_to_arena(v, radius, arena):
     return v
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def move_phase(cfg, grid, pos, heading, motor, alive, present, speed, turn_rate,
                dirty, dirty_flag, n_dirty, trig, rng):
     """Advance every robot whose motor is on by one tick; returns the work-list length.

@@ -142,7 +142,8 @@ def cell_range(v, reach, origin, inv, n_cells):
     return lo, hi
 
 
-@njit(cache=True)
+# allocates: keeps numba's reference counting (etswarm.sim.borrow)
+@njit(cache=True, _nrt=True)
 def grid_rebuild(grid, pos, present):
     """File every present robot by its current position (counting sort, O(N + cells)).
 
@@ -318,7 +319,8 @@ def rebuild_keeping_list(grid, pos, present, lst, n_list, flag):
     return kept
 
 
-@njit(cache=True)
+# allocates: keeps numba's reference counting (etswarm.sim.borrow)
+@njit(cache=True, _nrt=True)
 def grid_sync(grid, pos, present, dirty, dirty_flag, n_dirty):
     """Bring the grid in line with ``pos``/``present`` after edits made outside the kernel.
 

@@ -241,7 +241,8 @@ def hash_normal(key, tick, a, b_first, b_second, portable):
     return np.sqrt(-2.0 * log_as(u1, portable)) * sin_cos_as(2.0 * np.pi * u2, portable)[1]
 
 
-@njit(cache=True)
+# allocates: keeps numba's reference counting (etswarm.sim.borrow)
+@njit(cache=True, _nrt=True)
 def hash_draws(key, tick, a, b, count):
     """``count`` uniforms for (key, tick, a + k, b), k < count (for tests)."""
     out = np.empty(count)
@@ -268,7 +269,8 @@ def rebuild_keeping_flags(grid, pos, present, flags, robot_flag):
             flags[s] = robot_flag[i]
 
 
-@njit(cache=True)
+# allocates: keeps numba's reference counting (etswarm.sim.borrow)
+@njit(cache=True, _nrt=True)
 def grid_sync_flags(grid, pos, present, flags, robot_flag):
     """:func:`etswarm.sim.neighbours.grid_sync` for the flag work list: after outside edits
     the grid is rebuilt and the edited robots are flagged (bit 1) with budget 0."""

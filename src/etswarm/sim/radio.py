@@ -23,7 +23,8 @@ from etswarm.sim.prefetch import prefetch
 from etswarm.sim.world import PAYLOAD_BYTES
 
 
-@njit(cache=True)
+# allocates: keeps numba's reference counting (etswarm.sim.borrow)
+@njit(cache=True, _nrt=True)
 def senders_by_phase(tx_phase, tx_period):
     """The robots grouped by broadcast phase: robots ``order[first[s]:first[s + 1]]``, in
     index order, have ``tx_phase`` s (``order`` (N,) int64, ``first`` (tx_period + 1,)
@@ -44,13 +45,28 @@ def senders_by_phase(tx_phase, tx_period):
     return order, first
 
 
-@njit(cache=True)
+# allocates: keeps numba's reference counting (etswarm.sim.borrow)
+@njit(cache=True, _nrt=True)
 def radio_phase(tick, cfg, grid, pos, alive, present, tx_phase, out_on, out_type, out_data,
                 in_count, in_type, in_data, in_dist, counters, rng, order, first):
     """Clear the inboxes and deliver this tick's broadcasts (arrays as in World; ``order``
     and ``first``: :func:`senders_by_phase` of ``tx_phase``, so that only this tick's
     senders are visited)."""
     n = pos.shape[0]
+    # slots in range of the sender being handled and their squared distances (mm^2)
+    cand_s = np.empty(n, dtype=np.uint32)
+    cand_d2 = np.empty(n)
+    deliver(tick, cfg, grid, pos, alive, present, out_on, out_type, out_data, in_count,
+            in_type, in_data, in_dist, counters, rng, order, first, cand_s, cand_d2)
+
+
+@njit(cache=True, _nrt=False)
+def deliver(tick, cfg, grid, pos, alive, present, out_on, out_type, out_data, in_count,
+            in_type, in_data, in_dist, counters, rng, order, first, cand_s, cand_d2):
+    """:func:`radio_phase`'s work, in the scratch rows ``cand_s`` (N,) uint32 and
+    ``cand_d2`` (N,) float64. Compiled without numba's reference counting: it allocates
+    nothing and its arrays are held by its caller, so counting them, and the generator on
+    every draw, would be atomic updates for nothing."""
     cap = in_type.shape[1]
     in_count[:] = 0
     slot = tick % cfg.tx_period
@@ -66,9 +82,6 @@ def radio_phase(tick, cfg, grid, pos, alive, present, tx_phase, out_on, out_type
     loss = cfg.loss
     noise = cfg.dist_noise
     n_bytes = out_data.shape[1]
-    # slots in range of the sender being handled and their squared distances (mm^2)
-    cand_s = np.empty(n, dtype=np.uint32)
-    cand_d2 = np.empty(n)
     portable = cfg.portable
     sent = 0
     delivered = 0
