@@ -571,22 +571,8 @@ def et_part(  # type: ignore[no-untyped-def]
 
 
 @njit(_nrt=False)
-def busy_part(  # type: ignore[no-untyped-def]
-    busy,
-    n_busy,
-    tick,
-    alive,
-    in_count,
-    in_type,
-    in_data,
-    in_dist,
-    motor,
-    led,
-    out_on,
-    out_type,
-    out_data,
-    mem,
-):
+def busy_part(busy, n_busy, tick, alive, in_count, in_type, in_data, in_dist, motor, led,  # type: ignore[no-untyped-def]
+              out_on, out_type, out_data, mem):
     """:func:`et_part`'s work for the robots ``busy[:n_busy]`` (``busy`` (n,) int64 IDs).
     Compiled without numba's reference counting (``_nrt=False``, which the functions it
     calls inherit): it allocates nothing, and every array it passes on is held by its
