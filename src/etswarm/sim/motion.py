@@ -59,7 +59,8 @@ def move_phase(cfg, grid, pos, heading, motor, alive, present, speed, turn_rate,
     ``trig`` (N, 6) float64 caches, per robot, (heading, cos, sin) of the heading and
     (turn_rate, cos, sin) of one tick's turn, so a tick needs no trigonometry; an entry is
     recomputed whenever the heading or turn rate differs from the cached one (outside
-    edits, noise). Start it filled with NaN.
+    edits, noise). Start it filled with NaN. Compiled without numba's reference counting
+    (it allocates nothing; see etswarm.sim.borrow).
     """
     dt = cfg.dt
     r = cfg.radius

@@ -65,8 +65,8 @@ def deliver(tick, cfg, grid, pos, alive, present, out_on, out_type, out_data, in
             in_type, in_data, in_dist, counters, rng, order, first, cand_s, cand_d2):
     """:func:`radio_phase`'s work, in the scratch rows ``cand_s`` (N,) uint32 and
     ``cand_d2`` (N,) float64. Compiled without numba's reference counting: it allocates
-    nothing and its arrays are held by its caller, so counting them, and the generator on
-    every draw, would be atomic updates for nothing."""
+    nothing and its arrays are held by its caller, so counting them would only cost calls
+    (see etswarm.sim.borrow)."""
     cap = in_type.shape[1]
     in_count[:] = 0
     slot = tick % cfg.tx_period
