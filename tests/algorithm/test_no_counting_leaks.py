@@ -2,9 +2,9 @@
 
 The controller's per-robot work and the simulator's phases are compiled with ``_nrt=False``
 (no reference counting; see ``controller.busy_part``, ``radio.deliver``,
-``collide.resolve_overlaps``). A function compiled so that receives an array a callee
-allocated would never free it, so the few functions that allocate, and those that take an
-allocated array back, keep the counting (``_nrt=True``). This runs a formation, a split
+``motion.move_phase``, ``collide.resolve_overlaps``). A function compiled so that receives
+an array a callee allocated would never free it, so the few functions that allocate, and
+those that take an allocated array back, keep the counting (``_nrt=True``). This runs a formation, a split
 and both censuses (the walk's count floods a grid per step) with numba's allocation
 statistics on, and checks that every allocation the compiled code made was freed.
 """
@@ -27,12 +27,6 @@ from etswarm.algorithm.params import ETParams
 from etswarm.algorithm.run import ETRun, RunConfig
 
 from .traced import SESSION_34_FORMATION
-
-
-def live_allocations() -> int:
-    """Memory blocks numba's runtime allocated and has not freed yet."""
-    stats = rtsys.get_allocation_stats()
-    return stats.alloc - stats.free
 
 
 @pytest.mark.parametrize("census", ["walk", "tree"])
