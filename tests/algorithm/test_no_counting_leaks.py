@@ -4,9 +4,9 @@ The controller's per-robot work and the simulator's phases are compiled with ``_
 (no reference counting; see ``controller.busy_part``, ``radio.deliver``,
 ``motion.move_phase``, ``collide.resolve_overlaps``). A function compiled so that receives
 an array a callee allocated would never free it, so the few functions that allocate, and
-those that take an allocated array back, keep the counting (``_nrt=True``). This runs a formation, a split
-and both censuses (the walk's count floods a grid per step) with numba's allocation
-statistics on, and checks that every allocation the compiled code made was freed.
+those that take an allocated array back, keep the counting (``_nrt=True``). This runs a
+formation, a split and both censuses (the walk's count floods a grid per step) with numba's
+allocation statistics on, and checks that every allocation the compiled code made was freed.
 """
 
 from __future__ import annotations
