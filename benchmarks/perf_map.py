@@ -58,15 +58,19 @@ def write_perf_map(dispatcher, path: Path) -> int:  # type: ignore[no-untyped-de
 @click.option("--threads", type=int, default=1, show_default=True)
 @click.option("--control-threads", type=int, default=1, show_default=True,
               help="SimParams.control_threads (the split loop).")
+@click.option("--message-delay", type=click.IntRange(0, 1), default=0, show_default=True,
+              help="SimParams.message_delay_ticks (with --control-threads, the radio "
+                   "runs beside the control).")
 @click.option("--wait", type=float, default=2.0, show_default=True,
               help="Wall s to wait after printing the pid (to attach perf).")
 def main(shape: str, start: float, seconds: float, threads: int, control_threads: int,
-         wait: float) -> None:
+         message_delay: int, wait: float) -> None:
     """Write the perf map, print the pid, run ``seconds`` of the formation."""
     os.environ["ETSWARM_KERNEL_DIR"] = tempfile.mkdtemp(prefix="etswarm-perf-")
     run = ETRun(RunConfig(shape=shape_path(shape, Path(tempfile.mkdtemp())), seed=0,
                           max_time_s=1e9, layout="cluster"),
-                sim_params=SimParams(threads=threads, control_threads=control_threads))
+                sim_params=SimParams(threads=threads, control_threads=control_threads,
+                                     message_delay_ticks=message_delay))
     run.advance(max(1, round(start * run.ticks_per_s)))
     named = write_perf_map(run.sim._kernel, Path(f"/tmp/perf-{os.getpid()}.map"))
     # Reading the compiled module's function list leaves some 10^6 Python objects behind,

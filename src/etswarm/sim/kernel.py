@@ -257,6 +257,8 @@ def thread_ticks(p, parts, n, tick0, cfg, grid, pos, heading, motor, led, alive,
     sync, state, order, first, snap, bal = borrowed((sync, state, order, first, snap, bal))
     delay = cfg.msg_delay
     stop = mem[0]
+    # with a delay, the commands of the tick whose motion is still to run (see below)
+    motor_prev = snap[3]
     for k in range(n):
         tick = tick0 + k
         rx, cx = box, box
@@ -266,10 +268,18 @@ def thread_ticks(p, parts, n, tick0, cfg, grid, pos, heading, motor, led, alive,
             else:
                 cx = nxt
         # this thread's robots (etswarm.sim.balance), timed; with a delay, thread 0 also
-        # runs the tick's radio (into the other inbox, from the copy of the senders'
-        # messages) beside the others' parts, and its time counts as its part's
+        # runs the last tick's motion and collisions and then this tick's radio (into the
+        # other inbox, from the copy of the senders' messages) beside the others' parts,
+        # and their time counts as its part's: the control reads neither positions nor
+        # the others' commands, so it need not wait for them
         started = cycle_count()
         if delay != 0 and p == 0:
+            if k > 0:
+                n_dirty = move_phase(cfg, grid, pos, heading, motor_prev, alive, present,
+                                     speed, turn_rate, dirty, dirty_flag, state[ST_DIRTY],
+                                     trig, rng_motion)
+                state[ST_DIRTY] = collide_phase(cfg, grid, pos, present, motor_prev, dirty,
+                                                dirty_flag, n_dirty, spare, counters)
             radio_phase(tick, cfg, grid, pos, alive, present, tx_phase, snap[0], snap[1],
                         snap[2], rx[0], rx[1], rx[2], rx[3], counters, rng_radio, order,
                         first)
@@ -277,26 +287,31 @@ def thread_ticks(p, parts, n, tick0, cfg, grid, pos, heading, motor, led, alive,
                         cx[1], cx[2], cx[3], motor, led, out_on, out_type, out_data, mem)
         bal[cost_index(parts, p)] = cycle_count() - started
         if arrive(sync, parts):
-            # the last thread here runs the rest of the tick and readies the next one's
-            # radio (runs it, or with a delay copies its senders' messages)
+            # the last thread here runs the rest of the tick and readies the next one:
+            # with a delay it keeps the tick's commands for thread 0's motion and copies
+            # the next senders' messages; else it moves the robots and runs the radio
             rebalance(bal, parts)
             controller_rest(tick, alive, cx[0], cx[1], cx[2], cx[3], motor, led,
                             out_on, out_type, out_data, mem, rng_ctl)
-            n_dirty = move_phase(cfg, grid, pos, heading, motor, alive, present, speed,
-                                 turn_rate, dirty, dirty_flag, state[ST_DIRTY], trig,
-                                 rng_motion)
-            state[ST_DIRTY] = collide_phase(cfg, grid, pos, present, motor, dirty,
-                                            dirty_flag, n_dirty, spare, counters)
             state[ST_DONE] = k + 1
-            if stop[0] != 0 or k + 1 == n:
-                state[ST_STOP] = 1
-            elif delay != 0:
+            last = stop[0] != 0 or k + 1 == n
+            if delay != 0 and not last:
+                motor_prev[:] = motor
                 snapshot_senders(tick + 1, cfg, out_on, out_type, out_data, snap[0],
                                  snap[1], snap[2], order, first)
             else:
-                radio_phase(tick + 1, cfg, grid, pos, alive, present, tx_phase, out_on,
-                            out_type, out_data, in_count, in_type, in_data, in_dist,
-                            counters, rng_radio, order, first)
+                # (the call's last tick moves the robots before it returns)
+                n_dirty = move_phase(cfg, grid, pos, heading, motor, alive, present, speed,
+                                     turn_rate, dirty, dirty_flag, state[ST_DIRTY], trig,
+                                     rng_motion)
+                state[ST_DIRTY] = collide_phase(cfg, grid, pos, present, motor, dirty,
+                                                dirty_flag, n_dirty, spare, counters)
+                if not last:
+                    radio_phase(tick + 1, cfg, grid, pos, alive, present, tx_phase, out_on,
+                                out_type, out_data, in_count, in_type, in_data, in_dist,
+                                counters, rng_radio, order, first)
+            if last:
+                state[ST_STOP] = 1
             release(sync)
         if atomic_load(state, ST_STOP) != 0:
             return

@@ -133,13 +133,14 @@ class Simulator:
             self._chooser = ThreadChooser(self._threads_used())
         # message_delay_ticks 1: the inbox the radio fills for the next tick, swapped with
         # the world's after every tick (after a kernel call that ran an odd number), and
-        # the split loop's copy of a tick's senders' messages
+        # the split loop's copy of a tick's senders' messages and of its motor commands
         self._next_inbox: list[np.ndarray] = list(self._inbox())
-        self._sent_copy = (world.out_on, world.out_type, world.out_data)
+        self._sent_copy = (world.out_on, world.out_type, world.out_data,
+                           np.zeros_like(world.motor))
         if self.params.message_delay_ticks:
             self._next_inbox = [np.zeros_like(a) for a in self._inbox()]
             self._sent_copy = (np.zeros_like(world.out_on), np.zeros_like(world.out_type),
-                               np.zeros_like(world.out_data))
+                               np.zeros_like(world.out_data), np.zeros_like(world.motor))
         self.fast = is_fast_controller(controller)
         part_step = getattr(controller, "part_step", None)
         rest_step = getattr(controller, "rest_step", None)
