@@ -267,13 +267,16 @@ def thread_ticks(p, parts, n, tick0, cfg, grid, pos, heading, motor, led, alive,
                 rx = nxt
             else:
                 cx = nxt
-        # this thread's robots (etswarm.sim.balance), timed; with a delay, thread 0 also
-        # runs the last tick's motion and collisions and then this tick's radio (into the
-        # other inbox, from the copy of the senders' messages) beside the others' parts,
-        # and their time counts as its part's: the control reads neither positions nor
-        # the others' commands, so it need not wait for them
+        # this thread's robots (etswarm.sim.balance), timed; with a delay, the last
+        # part's thread also runs the last tick's motion and collisions and then this
+        # tick's radio (into the other inbox, from the copy of the senders' messages)
+        # beside the others' parts, and their time counts as its part's: the control
+        # reads neither positions nor the others' commands, so it need not wait for
+        # them. That thread holds the high IDs, the Queued robots of a packed repository,
+        # which hear most of the messages: their inboxes are filled on the core that
+        # reads them.
         started = cycle_count()
-        if delay != 0 and p == 0:
+        if delay != 0 and p == parts - 1:
             if k > 0:
                 n_dirty = move_phase(cfg, grid, pos, heading, motor_prev, alive, present,
                                      speed, turn_rate, dirty, dirty_flag, state[ST_DIRTY],
@@ -287,9 +290,10 @@ def thread_ticks(p, parts, n, tick0, cfg, grid, pos, heading, motor, led, alive,
                         cx[1], cx[2], cx[3], motor, led, out_on, out_type, out_data, mem)
         bal[cost_index(parts, p)] = cycle_count() - started
         if arrive(sync, parts):
-            # the last thread here runs the rest of the tick and readies the next one:
-            # with a delay it keeps the tick's commands for thread 0's motion and copies
-            # the next senders' messages; else it moves the robots and runs the radio
+            # the thread that arrives last runs the rest of the tick and readies the next
+            # one: with a delay it keeps the tick's commands for the motion (run by the
+            # last part's thread) and copies the next senders' messages; else it moves
+            # the robots and runs the radio
             rebalance(bal, parts)
             controller_rest(tick, alive, cx[0], cx[1], cx[2], cx[3], motor, led,
                             out_on, out_type, out_data, mem, rng_ctl)
