@@ -237,7 +237,7 @@ from etswarm.sim.motion import move_phase
 from etswarm.sim.neighbours import grid_sync
 from etswarm.sim.radio import radio_phase, senders_by_phase, snapshot_senders
 from etswarm.sim.balance import BAL_BOUNDS, cost_index, cycle_count, ready_bounds, rebalance
-from etswarm.sim.sync import arrive, atomic_load, release
+from etswarm.sim.sync import arrive_as, atomic_load, release
 
 # controller_part and controller_rest are bound by etswarm.sim.kernel before this body
 # runs (the controller's part_step and rest_step).
@@ -289,11 +289,11 @@ def thread_ticks(p, parts, n, tick0, cfg, grid, pos, heading, motor, led, alive,
         controller_part(bal[BAL_BOUNDS + p], bal[BAL_BOUNDS + p + 1], tick, alive, cx[0],
                         cx[1], cx[2], cx[3], motor, led, out_on, out_type, out_data, mem)
         bal[cost_index(parts, p)] = cycle_count() - started
-        if arrive(sync, parts):
-            # the thread that arrives last runs the rest of the tick and readies the next
-            # one: with a delay it keeps the tick's commands for the motion (run by the
-            # last part's thread) and copies the next senders' messages; else it moves
-            # the robots and runs the radio
+        if arrive_as(sync, parts, p == parts - 1):
+            # the last part's thread, once all have arrived, runs the rest of the tick and
+            # readies the next one: with a delay it keeps the tick's commands for the
+            # motion and copies the next senders' messages; else it moves the robots and
+            # runs the radio, whose inboxes are mostly its own robots' (see above)
             rebalance(bal, parts)
             controller_rest(tick, alive, cx[0], cx[1], cx[2], cx[3], motor, led,
                             out_on, out_type, out_data, mem, rng_ctl)

@@ -110,6 +110,29 @@ def arrive(sync, threads):
 
 
 @njit(cache=True)
+def arrive_as(sync, threads, chosen):
+    """:func:`arrive` whose thread let through alone is the one that passes ``chosen``
+    True, once every other thread has arrived, whichever was last. Exactly one thread
+    per barrier must pass True, and it must call :func:`release`."""
+    if chosen:
+        spins = 0
+        while atomic_load(sync, 0) != threads - 1:
+            spins += 1
+            if spins > SPINS_BEFORE_YIELD:
+                sched_yield()
+        atomic_add(sync, 0, 1 - threads)
+        return True
+    generation = atomic_load(sync, 1)
+    atomic_add(sync, 0, 1)
+    spins = 0
+    while atomic_load(sync, 1) == generation:
+        spins += 1
+        if spins > SPINS_BEFORE_YIELD:
+            sched_yield()
+    return False
+
+
+@njit(cache=True)
 def release(sync):
     """Let the threads waiting in :func:`arrive` go on."""
     atomic_add(sync, 1, 1)
