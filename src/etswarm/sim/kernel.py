@@ -39,13 +39,16 @@ With ``SimParams.control_threads > 1`` (and threads = 1) the simulator asks for 
 loop (``load_kernel(step, split=True, ...)``, file ``..._split_<hash>.py``): the serial
 loop's phases and random draws, but the controller's ``part_step`` runs on every thread,
 each on its own range of robots; the ranges follow the work each thread measured
-(:mod:`etswarm.sim.balance`). The last thread to finish its range runs ``rest_step``,
-motion, collisions and the next tick's radio while the others wait at the barrier. Parts
-touch only their own robots' rows, so the results are the serial loop's, byte for byte,
-on any number of threads. With ``SimParams.message_delay_ticks`` = 1 the radio fills the
-inbox of the next tick (both loops alternate two inboxes): in the split loop thread 0
-then runs it from a copy of the senders' messages before its range, beside the other
-threads' ranges (and gets fewer robots for it).
+(:mod:`etswarm.sim.balance`). Once every thread has finished its range, the last
+range's thread (the high IDs: a packed repository's Queued robots, which hear most of
+the messages) runs ``rest_step``, motion, collisions and the next tick's radio while the
+others wait at the barrier (``sync.arrive_as``). Parts touch only their own robots' rows,
+so the results are the serial loop's, byte for byte, on any number of threads. With
+``SimParams.message_delay_ticks`` = 1 the radio fills the inbox of the next tick (both
+loops alternate two inboxes): in the split loop the last range's thread then runs the
+last tick's motion and collisions and this tick's radio (from a copy of the senders'
+messages) before its range, beside the other threads' ranges (and gets fewer robots for
+it); the one-thread work left is copying the commands and the next senders' messages.
 
 The directory is ``$ETSWARM_KERNEL_DIR`` if set, else ``~/.cache/etswarm/kernels``
 (or a temporary directory when that is not writable).
