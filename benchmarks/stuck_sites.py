@@ -17,8 +17,8 @@ a remnant of 6 or more robots did not re-form, and counts those remnants' free s
 kind: takeable, torn (below), "inactive" (every placed neighbour Inactive: the front that
 would let a searcher take it has stalled elsewhere), "no pair" (no two adjacent neighbour
 sites held: it waits for another free site) or "no holder" (no neighbour site held). With
-``--probe`` it then puts a searcher of the remnant on each takeable site's best point
-(below) and reports whether it takes the site within 120 s.
+``--probe`` (with ``--from-runs`` or for one run) it then puts a searcher of the remnant on
+each takeable site's best point (below) and reports whether it takes the site within 120 s.
 
 A neighbour nearer than about 33 mm to the site's position pinches it (no body fits);
 one farther than d + 15 mm or so stretches it (no searcher reads its pair at d).
@@ -289,13 +289,11 @@ def stall_census(path: str, max_time: float, et_options: tuple[str, ...], jobs: 
                    "count their free sites by kind instead.")
 @click.option("--jobs", type=int, default=2, help="Processes for --from-runs.")
 @click.option("--probe", is_flag=True,
-              help="With --from-runs: also put a searcher on each takeable site's best "
-                   "point and report whether it takes the site within 120 s.")
+              help="Also put a searcher on each takeable site's best point and report "
+                   "whether it takes the site within 120 s.")
 def main(shape: str | None, seed: int, damage: tuple[str, ...], max_time: float,
          et_options: tuple[str, ...], runs_file: str | None, jobs: int, probe: bool) -> None:
     """Run SHAPE and describe the free sites of every remnant that did not form."""
-    if probe and not runs_file:
-        raise click.UsageError("--probe works with --from-runs FILE")
     if runs_file:
         stall_census(runs_file, max_time, et_options, jobs, probe)
         return
@@ -316,6 +314,16 @@ def main(shape: str | None, seed: int, damage: tuple[str, ...], max_time: float,
         fit = rigid_fit(tags_to_xy(tags[tagged], d), run.world.pos[tagged])
         for site in free:
             click.echo("\n".join(describe_site(run, group, held, site, fit)))
+        searchers = group[run.controller.states[group] == State.SEARCH]
+        for site in free if probe else []:
+            if site_kind(run, group, held, site) != "takeable":
+                continue
+            if len(searchers) == 0:
+                click.echo(f"  probe {site}: no searcher in the remnant")
+                continue
+            # (each probe moves a searcher: later probes start from a changed run)
+            click.echo(f"  probe {site}: "
+                       + probe_site(run, group, held, site, int(searchers[0])))
 
 
 if __name__ == "__main__":
