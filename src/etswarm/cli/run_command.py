@@ -91,7 +91,8 @@ from etswarm.algorithm.layout import LAYOUTS
 @click.option("--message-delay", type=int, default=0, show_default=True,
               help="Ticks (0 or 1) between a broadcast and the control tick that reads it "
                    "(SimParams.message_delay_ticks). With 1, --control-threads also runs "
-                   "the radio beside the control: faster, and other results than 0.")
+                   "the radio and the motion beside the control: faster, and other "
+                   "results than 0.")
 @click.option("--portable-math/--native-math", default=True, show_default=True,
               help="Compute sines, cosines, arctangents, logarithms and normal draws with "
                    "etswarm's own functions, so a seed gives the same run on every machine "
