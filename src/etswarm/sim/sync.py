@@ -115,11 +115,7 @@ def arrive_as(sync, threads, chosen):
     True, once every other thread has arrived, whichever was last. Exactly one thread
     per barrier must pass True, and it must call :func:`release`."""
     if chosen:
-        spins = 0
-        while atomic_load(sync, 0) != threads - 1:
-            spins += 1
-            if spins > SPINS_BEFORE_YIELD:
-                sched_yield()
+        wait_for(sync, 0, threads - 1)
         atomic_add(sync, 0, 1 - threads)
         return True
     generation = atomic_load(sync, 1)
