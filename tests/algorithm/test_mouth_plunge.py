@@ -116,11 +116,21 @@ def test_a_first_formation_searcher_plunges_in_a_mouth_with_way_plunge() -> None
     assert plunge_until(mouth_world(growth=0)) == TICK + 20 * TICKS_PER_S
 
 
+def test_a_first_formation_searcher_long_at_the_shape_plunges_in_a_mouth() -> None:
+    # ``late_plunge_s``: on any target, once it has been that long at the shape
+    late = ETParams(way_plunge="off").late_plunge_s
+    assert late > 0
+    world = mouth_world(growth=0, at_shape_s=late + 1.0, et=ETParams(way_plunge="off"))
+    assert plunge_until(world) == TICK + 20 * TICKS_PER_S
+
+
 @pytest.mark.parametrize(
     "world",
     [
-        pytest.param({"growth": 0, "et": ETParams(way_plunge="off")},
+        pytest.param({"growth": 0, "et": ETParams(way_plunge="off", late_plunge_s=0.0)},
                      id="first formation"),
+        pytest.param({"growth": 0, "at_shape_s": 1000.0, "et": ETParams(way_plunge="off")},
+                     id="first formation, not late"),
         pytest.param({"at_shape_s": 600.0}, id="not long at the shape"),
         pytest.param({"free_held": True}, id="no mouth"),
         pytest.param({"et": ETParams(mouth_plunge="off")}, id="option off"),
@@ -146,3 +156,22 @@ def test_h_seed_47_reforms_through_the_notch_mouth() -> None:
 
     assert unformed(crossbar("on")) == []
     assert unformed(crossbar("off")) == [(26, 26)]
+
+
+def starfish_59(late_plunge_s: float) -> dict:
+    config = RunConfig(shape="starfish", seed=59, max_time_s=8500,
+                       et=ETParams(late_plunge_s=late_plunge_s))
+    summary = ETRun(config).run()
+    assert summary["duplicate_tags"] == []
+    return summary
+
+
+def test_starfish_seed_59_forms_once_its_last_searcher_plunges_into_the_mouth() -> None:
+    """Session 72's trace: the last searcher passed 20 mm from the free site's best point
+    every 800 s and never stopped to confirm it. With the late plunge it takes the site;
+    without, the run ends one site short."""
+    late = starfish_59(ETParams().late_plunge_s)
+    assert late["formed"] and late["jaccard"] == 1.0
+    assert late["formation_time_s"] > ETParams().late_plunge_s
+    [stalled] = starfish_59(0.0)["components"]
+    assert (stalled["robots"], stalled["formed"], stalled["free_sites"]) == (91, False, 1)

@@ -48,7 +48,20 @@ def test_a_plunge_at_35_mm_turns_away_from_the_robot_it_touches() -> None:
 
 def test_a_first_formation_plunge_keeps_35_mm() -> None:
     # ``way_plunge``: a ring's first formation plunges in a mouth too, at 35 mm
-    assert plunge(mouth_world(readings=TOUCHING, growth=0)) == (TICK + 20 * TICKS_PER_S, LEFT)
+    world = mouth_world(readings=TOUCHING, growth=0, at_shape_s=3000.0)
+    assert plunge(world) == (TICK + 20 * TICKS_PER_S, LEFT)
+
+
+def test_a_late_first_formation_plunge_in_a_mouth_presses() -> None:
+    # ``late_plunge_aim_mm``: from ``late_plunge_s`` at the shape it presses, on any target
+    late = ETParams().late_plunge_s
+    for way_plunge in ("on", "off"):
+        world = mouth_world(readings=TOUCHING, growth=0, at_shape_s=late + 1.0,
+                            et=ETParams(way_plunge=way_plunge))
+        assert plunge(world) == (TICK + 20 * TICKS_PER_S, RIGHT)
+    world = mouth_world(readings=TOUCHING, growth=0, at_shape_s=late + 1.0,
+                        et=ETParams(late_plunge_aim_mm=35.0))
+    assert plunge(world) == (TICK + 20 * TICKS_PER_S, LEFT)
 
 
 @pytest.mark.parametrize("aim", [0.0, -1.0])

@@ -3,9 +3,14 @@ move their seeds off the situation they were written for."""
 
 from etswarm.sim.params import SimParams
 
+#: Until session 73 a first formation's searcher plunged in a notch's mouth only on a
+#: ring, and never pressed; first formations traced before then run as described with
+#: this.
+SESSION_72_FORMATION = {"late_plunge_s": 0.0}
+
 #: Until session 70 every plunge edge-followed the placed robots 35 mm away, a body and
 #: 2 mm; regrowths traced before then plunge as described with this.
-SESSION_69_REGROWTH = {"regrowth_plunge_aim_mm": 35.0}
+SESSION_69_REGROWTH = {"regrowth_plunge_aim_mm": 35.0, **SESSION_72_FORMATION}
 
 #: Until session 62 a status carried no bits of its sender's target, and a sibling
 #: remnant's robot was foreign to a searcher only by its tag or its held-sites message;

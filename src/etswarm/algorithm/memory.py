@@ -255,7 +255,10 @@ R_GAP_TOP_X = R_GAP_TOP + 1
 R_GAP_TOP_Y = R_GAP_TOP_X + 1
 R_GAP_SINCE = R_GAP_TOP_Y + 1
 R_LEAP_SINCE = R_GAP_SINCE + 1
-R_FIELDS = R_LEAP_SINCE + 1
+#: 1 while a searcher's plunge (``R_PLUNGE_UNTIL``) began in a notch's mouth, 0 when it
+#: began at a site it could not confirm.
+R_PLUNGE_MOUTH = R_LEAP_SINCE + 1
+R_FIELDS = R_PLUNGE_MOUTH + 1
 
 #: No site (a tag field that holds none: ``R_FORMER_X``, ``localise.find_site``'s left site).
 NO_SITE = -(1 << 40)

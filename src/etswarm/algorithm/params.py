@@ -86,7 +86,8 @@ C_WAY_END = 69  # 1: a ring's last way may be closed at the hole's end, leaving 
 C_WAY_PLUNGE = 70  # 1: in a ring's first formation a searcher in a notch's mouth plunges
 C_TICKS_GAP = 71  # a searcher at the dead end of a broken queue leaps after this long (0: off)
 C_TICKS_LEAP = 72  # ... and gives the leap up after this long
-N_CI = 73
+C_TICKS_LATE_PLUNGE = 73  # first formation: plunge in a mouth after this long at the shape (0: off)
+N_CI = 74
 
 #: Values of ``ci[C_RIGHT_OF_WAY]``: never, always, or in the first formation alone (a
 #: thin shape's, ``thin_right_of_way``).
@@ -130,7 +131,8 @@ F_FORMER_SLACK = 31  # a searcher near its former site: the slack (mm) on its od
 F_MIRROR_MARGIN = 32  # mm: a third robot rules a mirror out only fitting the site this much better
 F_REGROW_FOLD_SKIP = 33  # mm: after damage a robot this far from a site, off its mirror, is mute
 F_REGROW_PLUNGE_AIM = 34  # mm: after damage a plunging searcher keeps this near placed robots
-N_CF = 35
+F_LATE_PLUNGE_AIM = 35  # mm: F_REGROW_PLUNGE_AIM for a first formation's late plunges
+N_CF = 36
 
 #: The DESIGN section 2 robot: 7 mm/s, 13 deg/s, legs at 125.5 deg, radius 16.5 mm.
 NOMINAL_MOTION = (7.0, 13.0, 125.5, 16.5)
@@ -210,6 +212,7 @@ NON_NEGATIVE: frozenset[str] = frozenset(
         "isolated_rejoin_s", "hole_watch_s", "wave_s", "rim_wave_s", "regrowth_plunge_s",
         "first_plunge_after_s", "lost_escape_s", "offset_leave_mm", "former_site_slack_mm",
         "from_return_s", "mirror_margin_mm", "regrowth_fold_skip_mm", "repository_gap_s",
+        "late_plunge_s",
     }
 )
 #: Parameters that may take any sign.
@@ -749,6 +752,19 @@ class ETParams:
     #: 0-319: 277 of 320 runs formed against 267; with ``way_end`` 284 (docs/algorithm.md,
     #: "Session 68").
     way_plunge: str = "on"
+    #: In the first formation of any target, a searcher that has been this long (simulated
+    #: seconds) at the shape plunges when it stands in the mouth of a notch, as
+    #: ``way_plunge`` lets a ring's searchers do from ``widen_s``: the last searcher of a
+    #: starfish that passed 20 mm from its free site every 800 s for hours never stopped
+    #: there to confirm it (seed 59). 0: off. With 3600 and ``late_plunge_aim_mm`` 31,
+    #: starfish formed 309 of 320 runs on seeds 0-319 against 305 (docs/algorithm.md,
+    #: "Session 73").
+    late_plunge_s: float = 3600.0
+    #: ... and such a plunge, begun in a mouth from ``late_plunge_s`` at the shape, keeps
+    #: this near the placed robots (mm): under the 33 mm body, so it presses the mouth's
+    #: robots apart, as every plunge after damage does (``regrowth_plunge_aim_mm``). At
+    #: 35 (the first formation's other plunges) starfish formed 306 of 320.
+    late_plunge_aim_mm: float = 31.0
     #: In the first formation a searcher does not take a site while a neighbour site of
     #: the target nearer the seed triangle (in steps within the shape) is not known held,
     #: for its first this many seconds at the shape (``wave``): a compact shape then
@@ -937,6 +953,7 @@ class ETParams:
         ci[C_HOLE_TAKER] = 1 if watching and self.hole_taker == "on" else 0
         ci[C_WAY_END] = 1 if holes_known and self.way_end == "on" else 0
         ci[C_WAY_PLUNGE] = 1 if self.way_plunge == "on" else 0
+        ci[C_TICKS_LATE_PLUNGE] = ticks(self.late_plunge_s) if self.late_plunge_s > 0 else 0
         ci[C_TICKS_PER_S] = ticks_per_s
         # A thin shape closes no ring round a free middle: the wave only slows it.
         ci[C_WAVE] = ticks(self.wave_s) if self.wave_s > 0 and not thin else 0
@@ -961,6 +978,7 @@ class ETParams:
         cf[F_MIRROR_MARGIN] = self.mirror_margin_mm
         cf[F_REGROW_FOLD_SKIP] = self.regrowth_fold_skip_mm
         cf[F_REGROW_PLUNGE_AIM] = self.regrowth_plunge_aim_mm
+        cf[F_LATE_PLUNGE_AIM] = self.late_plunge_aim_mm
         cf[F_CONSIST_WIDEN] = self.consistency_widen_max
         cf[F_SETTLE_SCALE] = self.settle_tol_scale
         cf[F_YIELD_DIST] = self.yield_distance_mm

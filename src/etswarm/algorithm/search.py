@@ -68,6 +68,7 @@ from etswarm.algorithm.memory import (
     R_ON_SHAPE,
     R_ORBIT,
     R_PINCH_REFUSED,
+    R_PLUNGE_MOUTH,
     R_PLUNGE_UNTIL,
     R_RECENT0,
     R_REF_ID,
@@ -113,6 +114,7 @@ from etswarm.algorithm.params import (
     C_TICKS_COOLDOWN,
     C_TICKS_FROM_RETURN,
     C_TICKS_HOVER,
+    C_TICKS_LATE_PLUNGE,
     C_TICKS_LOST_ESCAPE,
     C_TICKS_MOVE_FRESH,
     C_TICKS_PLUNGE,
@@ -125,6 +127,7 @@ from etswarm.algorithm.params import (
     F_DIVE,
     F_DIVE_FIRST,
     F_FOLLOW_OFFSET,
+    F_LATE_PLUNGE_AIM,
     F_PINCH_PATIENCE,
     F_PORTABLE_MATH,
     F_REGROW_CAPTURE_OFFSET,
@@ -590,6 +593,7 @@ def search_rule(  # type: ignore[no-untyped-def]
                 # be in a notch's mouth, short of the site; for a while it edge-follows
                 # nearer, into the notch.
                 ri[i, R_PLUNGE_UNTIL] = tick + ci[C_TICKS_PLUNGE]
+                ri[i, R_PLUNGE_MOUTH] = 0
         return
 
     # Yield to a lower-ID searcher nearby, unless this robot stands still and that one is
@@ -654,7 +658,11 @@ def search_rule(  # type: ignore[no-untyped-def]
         if (
             ci[C_MOUTH_PLUNGE] == 1
             and ci[C_TICKS_PLUNGE] > 0
-            and (not first_growth(i, ri) or ci[C_WAY_PLUNGE] == 1)
+            and (
+                not first_growth(i, ri)
+                or ci[C_WAY_PLUNGE] == 1
+                or 0 < ci[C_TICKS_LATE_PLUNGE] <= at_shape
+            )
             and tick >= ri[i, R_PLUNGE_UNTIL]
             and at_shape >= widening_ticks(ri[i, R_GROWTH], cf)
             and in_mouth(i, tick - steer_fresh, nb, nb_dist, gene_flag, ci, held_i, ox, oy,
@@ -664,6 +672,7 @@ def search_rule(  # type: ignore[no-untyped-def]
             # site: the site lies inside the notch, so it plunges in (``mouth_plunge``);
             # with ``way_plunge``, in a ring's first formation too.
             ri[i, R_PLUNGE_UNTIL] = tick + ci[C_TICKS_PLUNGE]
+            ri[i, R_PLUNGE_MOUTH] = 1
     # Near a free site: stop-and-go, so that steering and the capture test use readings
     # taken where the robot is, not up to seconds ago.
     creep_stop = (tick + i) % CREEP_PERIOD_TICKS < CREEP_STOP_TICKS
@@ -679,7 +688,10 @@ def search_rule(  # type: ignore[no-untyped-def]
     if tick < ri[i, R_PLUNGE_UNTIL]:
         # plunging (a failed confirmation, or a notch's mouth): in the first formation
         # it keeps PLUNGE_AIM_MM; after damage it presses on the robots it passes
-        plunge_aim = PLUNGE_AIM_MM if first_growth(i, ri) else cf[F_REGROW_PLUNGE_AIM]
+        plunge_aim = cf[F_REGROW_PLUNGE_AIM]
+        if first_growth(i, ri):
+            late = ri[i, R_PLUNGE_MOUTH] == 1 and 0 < ci[C_TICKS_LATE_PLUNGE] <= at_shape
+            plunge_aim = cf[F_LATE_PLUNGE_AIM] if late else PLUNGE_AIM_MM
         dive = max(dive, d + cf[F_FOLLOW_OFFSET] - plunge_aim)
     aim = d + cf[F_FOLLOW_OFFSET] - dive
     # Kilobot orbit (both pivots also move the body forward): pivot away from the group
