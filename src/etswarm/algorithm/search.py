@@ -227,6 +227,7 @@ def begin_search(i, tick, ri):  # type: ignore[no-untyped-def]
     ri[i, R_REF_MOVED] = 0
     ri[i, R_PINCH_REFUSED] = 0
     ri[i, R_PLUNGE_UNTIL] = 0
+    ri[i, R_PLUNGE_MOUTH] = 0
     ri[i, R_ESCAPE_UNTIL] = 0
     ri[i, R_LEFT] = 0
     forget_recent_references(i, ri)
@@ -670,7 +671,8 @@ def search_rule(  # type: ignore[no-untyped-def]
         ):
             # Long at a regrowing shape, it passes between the two robots across a free
             # site: the site lies inside the notch, so it plunges in (``mouth_plunge``);
-            # with ``way_plunge``, in a ring's first formation too.
+            # with ``way_plunge``, in a ring's first formation too, and in any first
+            # formation once it has been ``late_plunge_s`` at the shape.
             ri[i, R_PLUNGE_UNTIL] = tick + ci[C_TICKS_PLUNGE]
             ri[i, R_PLUNGE_MOUTH] = 1
     # Near a free site: stop-and-go, so that steering and the capture test use readings
@@ -687,7 +689,8 @@ def search_rule(  # type: ignore[no-untyped-def]
     dive = dive_depth(at_shape, ri[i, R_GROWTH], cf)
     if tick < ri[i, R_PLUNGE_UNTIL]:
         # plunging (a failed confirmation, or a notch's mouth): in the first formation
-        # it keeps PLUNGE_AIM_MM; after damage it presses on the robots it passes
+        # it keeps PLUNGE_AIM_MM, but presses in a mouth once ``late_plunge_s`` at the
+        # shape (``late_plunge_aim_mm``); after damage it presses on the robots it passes
         plunge_aim = cf[F_REGROW_PLUNGE_AIM]
         if first_growth(i, ri):
             late = ri[i, R_PLUNGE_MOUTH] == 1 and 0 < ci[C_TICKS_LATE_PLUNGE] <= at_shape
