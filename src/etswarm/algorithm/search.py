@@ -315,6 +315,13 @@ def wide_minimum(at_shape, growth, cf):  # type: ignore[no-untyped-def]
 
 
 @njit(inline="always")
+def late_at_shape(at_shape, ci):  # type: ignore[no-untyped-def]
+    """A first-formation searcher ``at_shape`` ticks at the shape is late enough to plunge
+    in a notch's mouth and press (``ETParams.late_plunge_s``; never when that is 0)."""
+    return 0 < ci[C_TICKS_LATE_PLUNGE] <= at_shape
+
+
+@njit(inline="always")
 def widening_ticks(growth, cf):  # type: ignore[no-untyped-def]
     """Ticks at the shape over which a searcher of growth ``growth`` (R_GROWTH) widens its
     windows: ``F_WIDEN_TICKS`` in the first formation, ``F_REGROW_WIDEN_TICKS`` after
@@ -662,7 +669,7 @@ def search_rule(  # type: ignore[no-untyped-def]
             and (
                 not first_growth(i, ri)
                 or ci[C_WAY_PLUNGE] == 1
-                or 0 < ci[C_TICKS_LATE_PLUNGE] <= at_shape
+                or late_at_shape(at_shape, ci)
             )
             and tick >= ri[i, R_PLUNGE_UNTIL]
             and at_shape >= widening_ticks(ri[i, R_GROWTH], cf)
@@ -693,7 +700,7 @@ def search_rule(  # type: ignore[no-untyped-def]
         # shape (``late_plunge_aim_mm``); after damage it presses on the robots it passes
         plunge_aim = cf[F_REGROW_PLUNGE_AIM]
         if first_growth(i, ri):
-            late = ri[i, R_PLUNGE_MOUTH] == 1 and 0 < ci[C_TICKS_LATE_PLUNGE] <= at_shape
+            late = ri[i, R_PLUNGE_MOUTH] == 1 and late_at_shape(at_shape, ci)
             plunge_aim = cf[F_LATE_PLUNGE_AIM] if late else PLUNGE_AIM_MM
         dive = max(dive, d + cf[F_FOLLOW_OFFSET] - plunge_aim)
     aim = d + cf[F_FOLLOW_OFFSET] - dive
